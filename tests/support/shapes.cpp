@@ -1,0 +1,166 @@
+#include "support/shapes.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+namespace slim::test {
+
+namespace {
+Surface from_lists(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3i>& f) {
+  Surface s;
+  s.V.resize(static_cast<Eigen::Index>(v.size()), 3);
+  s.F.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (size_t i = 0; i < v.size(); ++i) s.V.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  for (size_t i = 0; i < f.size(); ++i) s.F.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
+  return s;
+}
+
+// Extrudes a simple polygon given in the XZ plane (counter-clockwise in (x, z)) along Y from y0
+// to y1. cap lists triangles of the polygon (indices into profile, counter-clockwise in (x, z)).
+Surface extrude_xz(const std::vector<Eigen::Vector2d>& profile, const std::vector<Eigen::Vector3i>& cap,
+                   double y0, double y1) {
+  const int n = static_cast<int>(profile.size());
+  std::vector<Eigen::Vector3d> v;
+  for (double y : {y0, y1})
+    for (const auto& p : profile) v.emplace_back(p.x(), y, p.y());
+  std::vector<Eigen::Vector3i> f;
+  for (const auto& t : cap) {
+    f.emplace_back(t(0), t(1), t(2));              // y0 cap faces -Y
+    f.emplace_back(n + t(0), n + t(2), n + t(1));  // y1 cap faces +Y
+  }
+  for (int i = 0; i < n; ++i) {  // side quads, outward = right of the counter-clockwise boundary
+    const int p0 = i, q0 = (i + 1) % n, p1 = n + i, q1 = n + (i + 1) % n;
+    f.emplace_back(p0, q1, q0);
+    f.emplace_back(p0, p1, q1);
+  }
+  return from_lists(v, f);
+}
+
+// Merges vertices at identical positions (exact compare: shapes are built from exact values).
+Surface weld(const Surface& s) {
+  std::map<std::array<double, 3>, int> index;
+  std::vector<Eigen::Vector3d> v;
+  std::vector<int> remap(static_cast<size_t>(s.V.rows()));
+  for (Eigen::Index i = 0; i < s.V.rows(); ++i) {
+    const std::array<double, 3> key{s.V(i, 0), s.V(i, 1), s.V(i, 2)};
+    auto it = index.find(key);
+    if (it == index.end()) {
+      it = index.emplace(key, static_cast<int>(v.size())).first;
+      v.emplace_back(s.V.row(i).transpose());
+    }
+    remap[static_cast<size_t>(i)] = it->second;
+  }
+  std::vector<Eigen::Vector3i> f;
+  for (Eigen::Index i = 0; i < s.F.rows(); ++i)
+    f.emplace_back(remap[s.F(i, 0)], remap[s.F(i, 1)], remap[s.F(i, 2)]);
+  return from_lists(v, f);
+}
+}  // namespace
+
+Surface box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  const std::vector<Eigen::Vector2d> profile{{lo.x(), lo.z()}, {hi.x(), lo.z()}, {hi.x(), hi.z()}, {lo.x(), hi.z()}};
+  return extrude_xz(profile, {{0, 1, 2}, {0, 2, 3}}, lo.y(), hi.y());
+}
+
+Surface merge(const Surface& a, const Surface& b) {
+  Surface s;
+  s.V.resize(a.V.rows() + b.V.rows(), 3);
+  s.V << a.V, b.V;
+  s.F.resize(a.F.rows() + b.F.rows(), 3);
+  s.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  return s;
+}
+
+Surface t_shape(const TShape& p) {
+  const double s = p.stem / 2, h = p.height, L = p.bar_length / 2, top = p.height + p.bar_thickness;
+  // Counter-clockwise T profile in (x, z); every corner is a profile vertex, so no T-junctions.
+  const std::vector<Eigen::Vector2d> profile{{-s, 0}, {s, 0}, {s, h}, {L, h}, {L, top}, {-L, top}, {-L, h}, {-s, h}};
+  const std::vector<Eigen::Vector3i> cap{{0, 1, 2}, {0, 2, 7},                       // stem
+                                         {5, 6, 7}, {5, 7, 2}, {5, 2, 3}, {5, 3, 4}};  // bar
+  return extrude_xz(profile, cap, -s, s);
+}
+
+double t_shape_arm_underside_area(const TShape& p) { return (p.bar_length - p.stem) * p.stem; }
+
+Surface icosphere(int levels, double r, const Eigen::Vector3d& c) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Eigen::Vector3d> v{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for (auto& p : v) p.normalize();
+  std::vector<Eigen::Vector3i> f{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      v.push_back((v[a] + v[b]).normalized());
+      return mid[key] = static_cast<int>(v.size()) - 1;
+    };
+    std::vector<Eigen::Vector3i> g;
+    for (const auto& tri : f) {
+      const int a = midpoint(tri(0), tri(1)), b = midpoint(tri(1), tri(2)), cc = midpoint(tri(2), tri(0));
+      g.emplace_back(tri(0), a, cc);
+      g.emplace_back(tri(1), b, a);
+      g.emplace_back(tri(2), cc, b);
+      g.emplace_back(a, b, cc);
+    }
+    f.swap(g);
+  }
+  for (auto& p : v) p = c + r * p;
+  return from_lists(v, f);
+}
+
+Surface open_hemisphere(int levels, double r, bool lower) {
+  const Surface full = icosphere(levels, r, Eigen::Vector3d(0, 0, r));
+  std::vector<Eigen::Vector3i> kept;
+  for (Eigen::Index i = 0; i < full.F.rows(); ++i) {
+    const double cz = (full.V(full.F(i, 0), 2) + full.V(full.F(i, 1), 2) + full.V(full.F(i, 2), 2)) / 3.0;
+    if ((cz < r) == lower) kept.emplace_back(full.F.row(i).transpose());
+  }
+  // Drop the unreferenced vertices.
+  std::vector<int> remap(static_cast<size_t>(full.V.rows()), -1);
+  std::vector<Eigen::Vector3d> v;
+  for (auto& tri : kept)
+    for (int k = 0; k < 3; ++k) {
+      int& m = remap[static_cast<size_t>(tri(k))];
+      if (m < 0) {
+        m = static_cast<int>(v.size());
+        v.emplace_back(full.V.row(tri(k)).transpose());
+      }
+      tri(k) = m;
+    }
+  return from_lists(v, kept);
+}
+
+Surface two_cubes_sharing_edge(double a) {
+  return weld(merge(box({0, 0, 0}, {a, a, a}), box({a, a, 0}, {2 * a, 2 * a, a})));
+}
+
+Eigen::Matrix3d axis_angle(const Eigen::Vector3d& axis, double radians) {
+  return Eigen::AngleAxisd(radians, axis.normalized()).toRotationMatrix();
+}
+
+Surface transformed(const Surface& s, const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
+  Surface out = s;
+  out.V = (s.V * R.transpose()).rowwise() + t.transpose();
+  return out;
+}
+
+std::string sample_bunny_path() { return std::string(SLIM_DATA_DIR) + "/bunny.ply"; }
+
+}  // namespace slim::test
+
+#ifdef SLIM_TESTS_HAVE_VCG
+#include "vcg_adapters/mesh_io.h"
+namespace slim::test {
+Surface load_mesh(const std::string& path) { return vcgx::load_surface(path); }
+}  // namespace slim::test
+#endif

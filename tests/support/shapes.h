@@ -1,0 +1,50 @@
+// Closed-form test shapes, built in code so every expected figure can be derived by hand.
+// All are closed and outward-oriented unless the name says otherwise; units are mm; +Z is up
+// and every shape rests on z = 0 unless stated.
+#pragma once
+
+#include <string>
+
+#include "core/surface.h"
+
+namespace slim::test {
+
+// Axis-aligned box [x0,x1] x [y0,y1] x [z0,z1], 12 triangles.
+Surface box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+
+// Union of boxes as one surface (separate components; touching boxes share no vertices).
+Surface merge(const Surface& a, const Surface& b);
+
+// A T: a stem [-s/2,s/2]^2 x [0,h] and a bar of length L, width s, thickness t on top of it,
+// built as one closed manifold (no internal faces). Risky area at any alpha < 90: the two arm
+// undersides, 2 * (L - s)/2 * s = (L - s) * s.
+struct TShape {
+  double stem = 10, height = 20, bar_length = 50, bar_thickness = 6;
+};
+Surface t_shape(const TShape& p = {});
+double t_shape_arm_underside_area(const TShape& p = {});
+
+// Icosahedron subdivided `levels` times and projected onto the sphere of radius r about c.
+Surface icosphere(int levels, double r = 10.0, const Eigen::Vector3d& c = Eigen::Vector3d(0, 0, 10));
+
+// The lower or upper half of an icosphere: an open surface (not closed).
+Surface open_hemisphere(int levels, double r = 10.0, bool lower = true);
+
+// Two unit cubes of side a that share exactly one edge (non-manifold edge, 4 faces on it).
+Surface two_cubes_sharing_edge(double a = 10.0);
+
+// Apply x -> R x + t to every vertex.
+Surface transformed(const Surface& s, const Eigen::Matrix3d& R, const Eigen::Vector3d& t = Eigen::Vector3d::Zero());
+
+// Rotation about a unit axis by an angle in radians.
+Eigen::Matrix3d axis_angle(const Eigen::Vector3d& axis, double radians);
+
+// Path of the sample bunny written by scripts/setup.sh (+Z up, resting on z = 0).
+std::string sample_bunny_path();
+
+#ifdef SLIM_TESTS_HAVE_VCG
+// Loads any mesh VCG reads (PLY, STL, OBJ, OFF) into a Surface; throws on failure.
+Surface load_mesh(const std::string& path);
+#endif
+
+}  // namespace slim::test

@@ -1,0 +1,26 @@
+// Mesh files <-> slim::Surface through VCG's importers and exporters (PLY, STL, OBJ, OFF), for
+// the CLI and the tests. The plugin does not use this: MeshLab does its own IO.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "core/surface.h"
+
+namespace slim::vcgx {
+
+// Reads a mesh; throws std::runtime_error("cannot read <path>: <VCG's reason>") on failure.
+// Duplicate vertices written by STL are merged so the surface is connected.
+Surface load_surface(const std::string& path);
+
+// Per-face extras to write with a surface. Empty vectors are not written.
+struct FaceExtras {
+  Eigen::VectorXd quality;       // #F, written as face quality (PLY only) and as the ramp colour
+  std::vector<bool> selected;    // #F, written as a per-face flag (PLY only)
+};
+
+// Writes a surface; the format follows the extension. Throws std::runtime_error on failure.
+void save_surface(const std::string& path, const Surface& s, const FaceExtras& extras = {});
+
+}  // namespace slim::vcgx
