@@ -23,7 +23,7 @@ class IoMesh : public vcg::tri::TriMesh<std::vector<IoVertex>, std::vector<IoFac
 
 }  // namespace
 
-Surface load_surface(const std::string& path) {
+Surface load_surface(const std::string& path, FaceExtras* extras) {
   IoMesh m;
   int mask = 0;
   const int err = vcg::tri::io::Importer<IoMesh>::Open(m, path.c_str(), mask);
@@ -32,6 +32,14 @@ Surface load_surface(const std::string& path) {
   // STL stores each triangle's corners separately; weld them so the surface is connected.
   vcg::tri::Clean<IoMesh>::RemoveDuplicateVertex(m);
   vcg::tri::Allocator<IoMesh>::CompactEveryVector(m);
+  if (extras) {
+    *extras = FaceExtras{};
+    if (mask & vcg::tri::io::Mask::IOM_FACEQUALITY) {
+      extras->quality.resize(m.fn);
+      for (int i = 0; i < m.fn; ++i) extras->quality(i) = m.face[static_cast<size_t>(i)].Q();
+    }
+    if (mask & vcg::tri::io::Mask::IOM_FACEFLAGS) extras->selected = selected_faces(m);
+  }
   return to_surface(m);
 }
 

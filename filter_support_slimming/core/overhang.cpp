@@ -1,0 +1,61 @@
+#include "core/overhang.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace slim {
+
+double self_supporting_tau(double alpha_max_deg) {
+  if (!(alpha_max_deg >= 0.0 && alpha_max_deg < 90.0))
+    throw std::invalid_argument("the self-supporting angle must be in [0, 90) degrees, got " +
+                                std::to_string(alpha_max_deg));
+  return std::sin(alpha_max_deg * M_PI / 180.0);
+}
+
+Eigen::Vector3d unit_print_direction(const Eigen::Vector3d& d) {
+  const double len = d.norm();
+  if (!std::isfinite(len) || len < 1e-12)
+    throw std::invalid_argument("the print direction must be a non-zero vector");
+  return d / len;
+}
+
+OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options) {
+  if (s.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: there is nothing to analyse");
+  check_surface(s);
+  const Eigen::Vector3d d = unit_print_direction(options.print_direction);
+  const double tau = self_supporting_tau(options.alpha_max_deg);
+
+  const Points n = face_normals(s);
+  const Eigen::VectorXd area = face_areas(s);
+  const Eigen::VectorXd height = s.V * d;  // every vertex's height along d
+
+  OverhangReport r;
+  r.plate_height = height.minCoeff();
+  r.quality = n * d + Eigen::VectorXd::Constant(s.F.rows(), tau);
+  r.risky.assign(static_cast<size_t>(s.F.rows()), false);
+  r.on_plate.assign(static_cast<size_t>(s.F.rows()), false);
+  r.total_area = area.sum();
+  const bool plate_rule = options.plate_tolerance >= 0.0;
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
+    const auto fi = static_cast<size_t>(f);
+    if (plate_rule) {
+      bool resting = true;
+      for (int k = 0; k < 3; ++k) resting = resting && height(s.F(f, k)) - r.plate_height <= options.plate_tolerance;
+      if (resting) {
+        r.on_plate[fi] = true;
+        r.quality(f) = 1.0;  // carried by the plate: reads as safe on the colour ramp
+        ++r.plate_count;
+        continue;
+      }
+    }
+    if (r.quality(f) < 0.0) {
+      r.risky[fi] = true;
+      ++r.risky_count;
+      r.risky_area += area(f);
+    }
+  }
+  return r;
+}
+
+}  // namespace slim

@@ -1,0 +1,48 @@
+// Risky ("overhanging") faces, paper §I-A.
+//
+// A face with unit normal n is risky when  n·d + tau < 0,  tau = sin(alpha_max),
+// where d is the print (build) direction and alpha_max the self-supporting angle measured from
+// the vertical: alpha_max = 45° is the usual slicer rule; at alpha_max = 0 every face that points
+// below the horizontal is risky.
+//
+// Faces resting on the build plate are carried by it and are never risky: all three vertices lie
+// within `plate_tolerance` (mesh units, mm) of the lowest point of the mesh along d.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/surface.h"
+
+namespace slim {
+
+struct OverhangOptions {
+  Eigen::Vector3d print_direction = Eigen::Vector3d::UnitZ();  // any non-zero vector; normalised
+  double alpha_max_deg = 45.0;                                  // self-supporting angle, [0, 90)
+  double plate_tolerance = 1e-3;                                // mm; < 0 disables the plate rule
+};
+
+struct OverhangReport {
+  Eigen::VectorXd quality;     // #F: n·d + tau (< 0 means risky); plate faces get +1
+  std::vector<bool> risky;     // #F
+  std::vector<bool> on_plate;  // #F: resting on the build plate (never risky)
+  Eigen::Index risky_count = 0;
+  Eigen::Index plate_count = 0;
+  double risky_area = 0.0;     // mm²
+  double total_area = 0.0;     // mm²
+  double plate_height = 0.0;   // min over vertices of v·d (mm)
+  double risky_share() const { return total_area > 0.0 ? risky_area / total_area : 0.0; }
+};
+
+// tau = sin(alpha_max); throws std::invalid_argument unless 0 <= alpha_max_deg < 90.
+double self_supporting_tau(double alpha_max_deg);
+
+// Returns the unit print direction; throws std::invalid_argument for a zero or non-finite vector.
+Eigen::Vector3d unit_print_direction(const Eigen::Vector3d& d);
+
+// Classifies every face. Throws std::invalid_argument (readable message) for a surface with no
+// faces, bad indices, non-finite coordinates, or bad options.
+OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options = {});
+
+}  // namespace slim

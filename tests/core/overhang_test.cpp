@@ -1,0 +1,107 @@
+// Known answers for the risky-face rule n·d + tau < 0 and the build-plate exemption.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/overhang.h"
+#include "support/shapes.h"
+
+using namespace slim;
+
+TEST(Overhang, CubeOnThePlateHasNoRiskyArea) {
+  const OverhangReport r = analyse_overhang(test::box({0, 0, 0}, {10, 10, 10}));
+  EXPECT_EQ(r.risky_count, 0);
+  EXPECT_EQ(r.risky_area, 0.0);
+  EXPECT_EQ(r.plate_count, 2);  // the bottom square, two triangles
+  EXPECT_NEAR(r.total_area, 600.0, 1e-9);
+}
+
+TEST(Overhang, CubeBottomIsRiskyWithoutThePlateRule) {
+  OverhangOptions o;
+  o.plate_tolerance = -1.0;
+  const OverhangReport r = analyse_overhang(test::box({0, 0, 0}, {10, 10, 10}), o);
+  EXPECT_EQ(r.risky_count, 2);
+  EXPECT_NEAR(r.risky_area, 100.0, 1e-9);
+}
+
+TEST(Overhang, TShapeArmUndersidesAreExactlyTheRiskyArea) {
+  const test::TShape p;
+  for (double alpha : {0.0, 30.0, 45.0, 60.0, 89.0}) {
+    OverhangOptions o;
+    o.alpha_max_deg = alpha;
+    const OverhangReport r = analyse_overhang(test::t_shape(p), o);
+    EXPECT_NEAR(r.risky_area, test::t_shape_arm_underside_area(p), 1e-9) << "alpha " << alpha;
+    EXPECT_EQ(r.plate_count, 2);  // the stem's foot
+  }
+}
+
+TEST(Overhang, IcosphereRiskyAreaMatchesTheSphericalCap) {
+  const double r = 10.0;
+  const Surface sphere = test::icosphere(5, r);
+  for (double alpha : {0.0, 15.0, 30.0, 45.0, 60.0}) {
+    OverhangOptions o;
+    o.alpha_max_deg = alpha;
+    o.plate_tolerance = -1.0;  // the whole lower cap counts
+    const OverhangReport rep = analyse_overhang(sphere, o);
+    // Points of the sphere with n·z < -sin(alpha): a cap of height r (1 - sin(alpha)).
+    const double expected = 2.0 * M_PI * r * r * (1.0 - std::sin(alpha * M_PI / 180.0));
+    EXPECT_NEAR(rep.risky_area / expected, 1.0, 0.02) << "alpha " << alpha;
+  }
+}
+
+TEST(Overhang, UpsideDownFaceIsRiskyExactlyWhenItsOriginalFacedUpSteeply) {
+  const double alpha = 40.0;
+  const double tau = std::sin(alpha * M_PI / 180.0);
+  const Surface sphere = test::icosphere(3, 10.0);
+  const Surface flipped = test::transformed(sphere, test::axis_angle({1, 0.3, 0}, M_PI));
+  OverhangOptions o;
+  o.alpha_max_deg = alpha;
+  o.plate_tolerance = -1.0;
+  const OverhangReport r = analyse_overhang(flipped, o);
+  const Points n0 = face_normals(sphere);
+  for (Eigen::Index f = 0; f < sphere.F.rows(); ++f) {
+    const double up = n0(f, 2);
+    if (std::abs(up - tau) < 1e-9) continue;  // on the threshold: either verdict is rounding
+    EXPECT_EQ(r.risky[static_cast<size_t>(f)], up > tau) << "face " << f;
+  }
+}
+
+TEST(Overhang, PrintDirectionNeedNotBeUnitOrVertical) {
+  // A box printed along +X: the face at x = lo is on the plate, the face at x = hi is safe, the
+  // four side faces are vertical (n·d = 0) and safe.
+  OverhangOptions o;
+  o.print_direction = {3.0, 0.0, 0.0};
+  const OverhangReport r = analyse_overhang(test::box({0, 0, 0}, {2, 2, 2}), o);
+  EXPECT_EQ(r.risky_count, 0);
+  EXPECT_EQ(r.plate_count, 2);
+  EXPECT_NEAR(r.plate_height, 0.0, 1e-12);
+}
+
+TEST(Overhang, QualityIsNdPlusTauAndPlateFacesReadSafe) {
+  const Surface s = test::t_shape();
+  const OverhangReport r = analyse_overhang(s);
+  const Points n = face_normals(s);
+  const double tau = std::sin(M_PI / 4);
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
+    if (r.on_plate[static_cast<size_t>(f)])
+      EXPECT_EQ(r.quality(f), 1.0);
+    else
+      EXPECT_NEAR(r.quality(f), n(f, 2) + tau, 1e-12);
+    EXPECT_EQ(r.risky[static_cast<size_t>(f)], r.quality(f) < 0.0);
+  }
+}
+
+TEST(Overhang, BadInputIsRefusedWithAReason) {
+  EXPECT_THROW(analyse_overhang(Surface{}), std::invalid_argument);
+  OverhangOptions o;
+  o.alpha_max_deg = 90.0;
+  EXPECT_THROW(analyse_overhang(test::box({0, 0, 0}, {1, 1, 1}), o), std::invalid_argument);
+  o = {};
+  o.print_direction = Eigen::Vector3d::Zero();
+  EXPECT_THROW(analyse_overhang(test::box({0, 0, 0}, {1, 1, 1}), o), std::invalid_argument);
+  try {
+    analyse_overhang(Surface{});
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no faces"), std::string::npos);
+  }
+}

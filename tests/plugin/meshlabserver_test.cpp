@@ -1,0 +1,76 @@
+// End to end: the real meshlabserver (a copy in the private prefix, so it loads this build's
+// plugin) runs the shipped example scripts on the sample bunny under xvfb-run.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+#include <regex>
+
+#include "core/overhang.h"
+#include "harness.h"
+#include "support/shapes.h"
+#include "vcg_adapters/mesh_io.h"
+
+using namespace slim;
+namespace fs = std::filesystem;
+
+namespace {
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("slim-e2e-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+}  // namespace
+
+TEST(Meshlabserver, OverhangAnalysisScriptOnTheBunny) {
+  const std::string in = test::sample_bunny_path();
+  ASSERT_TRUE(fs::exists(in)) << "run scripts/setup.sh first";
+  const fs::path out = scratch("bunny_overhang.ply");
+  const test::ServerRun run = test::run_meshlabserver(
+      "-i '" + in + "' -o '" + out.string() + "' -m fq fc sa -s '" SLIM_SOURCE_DIR "/examples/overhang_analysis.mlx'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(run.output.find("Problem with filter"), std::string::npos) << run.output;
+
+  // The log's risky area is the core's figure for the same mesh and the script's options.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.output, m, std::regex(R"((\d+) risky faces of (\d+); risky area ([0-9.eE+-]+) mm\^2)")))
+      << run.output;
+  const Surface bunny = test::load_mesh(in);
+  OverhangOptions o;
+  o.plate_tolerance = 0.01;  // as in the example script
+  const OverhangReport core = analyse_overhang(bunny, o);
+  EXPECT_NEAR(std::stod(m[3]), core.risky_area, 1e-4 * core.risky_area);
+  EXPECT_NEAR(std::stoi(m[1]), core.risky_count, 2);  // float vs double at the threshold
+  EXPECT_GT(core.risky_count, 0);
+
+  // The saved PLY carries face quality (n·d + tau, negative = risky) and colour.
+  vcgx::FaceExtras saved;
+  const Surface back = vcgx::load_surface(out.string(), &saved);
+  ASSERT_EQ(back.F.rows(), bunny.F.rows());
+  ASSERT_EQ(saved.quality.size(), bunny.F.rows());
+  EXPECT_LT((saved.quality - core.quality).cwiseAbs().maxCoeff(), 1e-4);
+  std::ifstream header(out);
+  std::string text((std::istreambuf_iterator<char>(header)), {});
+  const std::string head = text.substr(0, text.find("end_header"));
+  const std::string face_part = head.substr(head.find("element face"));
+  EXPECT_NE(face_part.find("property uchar red"), std::string::npos) << head;
+  EXPECT_NE(face_part.find("property float quality"), std::string::npos) << head;
+  fs::remove_all(out.parent_path());
+}
+
+TEST(Meshlabserver, FailingFilterExplainsItselfInTheLog) {
+  // A point cloud: the filter must fail with its reason, and meshlabserver must not crash.
+  const fs::path in = scratch("points.ply");
+  {
+    std::ofstream f(in);
+    f << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+         "end_header\n0 0 0\n1 0 0\n0 1 0\n";
+  }
+  const test::ServerRun run = test::run_meshlabserver(
+      "-i '" + in.string() + "' -o '" + scratch("out.ply").string() + "' -s '" SLIM_SOURCE_DIR
+      "/examples/overhang_analysis.mlx'");
+  EXPECT_NE(run.output.find("no faces"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("Segmentation"), std::string::npos) << run.output;
+  fs::remove_all(in.parent_path());
+}
