@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "core/surface.h"
 #include "support/shapes.h"
 
@@ -63,3 +65,21 @@ TEST(SampleBunny, LoadsStandingOnThePlate) {
   EXPECT_GT(signed_volume(s), 0.0);
 }
 #endif
+
+TEST(Shapes, MushroomAndArchAreClosedOutwardAndOverhang) {
+  for (const Surface& s : {test::mushroom(), test::arch()}) {
+    EXPECT_GT(signed_volume(s), 0.0);
+    // Closed: every directed edge appears once and its reverse once.
+    std::map<std::pair<int, int>, int> edges;
+    for (Eigen::Index f = 0; f < s.F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) ++edges[{s.F(f, k), s.F(f, (k + 1) % 3)}];
+    for (const auto& [e, count] : edges) {
+      EXPECT_EQ(count, 1);
+      EXPECT_EQ(edges.count({e.second, e.first}), 1u);
+    }
+    EXPECT_NEAR(s.V.col(2).minCoeff(), 0.0, 1e-12);
+  }
+  // The arch's volume: the 30 x 20 block minus the opening (a 20 x 8 rectangle and a half disc).
+  const double arch_area = 30 * 20 - (20 * 8 + 0.5 * M_PI * 100 * (std::sin(M_PI / 24) * 24 / M_PI));
+  EXPECT_NEAR(signed_volume(test::arch()), 10 * arch_area, 1e-6);
+}

@@ -164,3 +164,80 @@ namespace slim::test {
 Surface load_mesh(const std::string& path) { return vcgx::load_surface(path); }
 }  // namespace slim::test
 #endif
+
+namespace slim::test {
+
+namespace {
+// Revolves a profile (r, z) about +Z; the first and last points must lie on the axis (r = 0) and
+// the profile runs bottom to top so that the faces point outwards.
+Surface revolve(const std::vector<Eigen::Vector2d>& profile, int segments) {
+  std::vector<Eigen::Vector3d> v;
+  std::vector<Eigen::Vector3i> f;
+  const int bottom = 0;
+  v.emplace_back(0, 0, profile.front().y());
+  const int rings = static_cast<int>(profile.size()) - 2;  // profile points off the axis
+  for (int i = 1; i <= rings; ++i)
+    for (int s = 0; s < segments; ++s) {
+      const double a = 2.0 * M_PI * s / segments;
+      v.emplace_back(profile[static_cast<size_t>(i)].x() * std::cos(a), profile[static_cast<size_t>(i)].x() * std::sin(a),
+                     profile[static_cast<size_t>(i)].y());
+    }
+  const int top = static_cast<int>(v.size());
+  v.emplace_back(0, 0, profile.back().y());
+  auto ring = [&](int i, int s) { return 1 + (i - 1) * segments + (s % segments); };
+  for (int s = 0; s < segments; ++s) {
+    f.emplace_back(bottom, ring(1, s + 1), ring(1, s));
+    for (int i = 1; i < rings; ++i) {
+      f.emplace_back(ring(i, s), ring(i, s + 1), ring(i + 1, s + 1));
+      f.emplace_back(ring(i, s), ring(i + 1, s + 1), ring(i + 1, s));
+    }
+    f.emplace_back(top, ring(rings, s), ring(rings, s + 1));
+  }
+  return from_lists(v, f);
+}
+
+// Ear-clipping triangulation of a simple counter-clockwise polygon (test shapes only).
+std::vector<Eigen::Vector3i> ear_clip(const std::vector<Eigen::Vector2d>& p) {
+  std::vector<int> idx(p.size());
+  for (size_t i = 0; i < p.size(); ++i) idx[i] = static_cast<int>(i);
+  auto cross = [&](int a, int b, int c) {
+    return (p[b] - p[a]).x() * (p[c] - p[a]).y() - (p[b] - p[a]).y() * (p[c] - p[a]).x();
+  };
+  std::vector<Eigen::Vector3i> tris;
+  while (idx.size() > 3) {
+    bool clipped = false;
+    for (size_t i = 0; i < idx.size() && !clipped; ++i) {
+      const int a = idx[(i + idx.size() - 1) % idx.size()], b = idx[i], c = idx[(i + 1) % idx.size()];
+      if (cross(a, b, c) <= 1e-12) continue;  // reflex or flat corner
+      bool empty = true;
+      for (int q : idx)
+        if (q != a && q != b && q != c && cross(a, b, q) >= 0 && cross(b, c, q) >= 0 && cross(c, a, q) >= 0) empty = false;
+      if (!empty) continue;
+      tris.emplace_back(a, b, c);
+      idx.erase(idx.begin() + static_cast<long>(i));
+      clipped = true;
+    }
+    if (!clipped) throw std::logic_error("ear_clip: polygon is not simple and counter-clockwise");
+  }
+  tris.emplace_back(idx[0], idx[1], idx[2]);
+  return tris;
+}
+}  // namespace
+
+Surface mushroom(int segments) {
+  return revolve({{0, 0}, {3, 0}, {3, 10}, {10, 11}, {10, 13}, {6, 15.5}, {0, 16}}, segments);
+}
+
+Surface arch(int arc_segments) {
+  std::vector<Eigen::Vector2d> profile{{-15, 0}, {-10, 0}};
+  for (int i = 0; i <= arc_segments; ++i) {  // the opening's arc, from the left leg over to the right
+    const double a = M_PI - M_PI * i / arc_segments;
+    profile.emplace_back(10 * std::cos(a), 8 + 10 * std::sin(a));
+  }
+  for (const Eigen::Vector2d& q : {Eigen::Vector2d(10, 0), Eigen::Vector2d(15, 0), Eigen::Vector2d(15, 20),
+                                   Eigen::Vector2d(-15, 20)})
+    profile.push_back(q);
+  return extrude_xz(profile, ear_clip(profile), -5, 5);
+}
+
+}  // namespace slim::test

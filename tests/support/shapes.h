@@ -48,3 +48,15 @@ Surface load_mesh(const std::string& path);
 #endif
 
 }  // namespace slim::test
+
+namespace slim::test {
+
+// A mushroom: a solid of revolution about +Z, stem radius 3 and height 10 on the plate, with a
+// cap of radius 10 whose underside (z from 10 at the stem to 11 at the rim) overhangs.
+Surface mushroom(int segments = 48);
+
+// An arch: an extruded inverted U, 30 wide, 20 high, 10 deep, standing on two legs, with a
+// semicircular opening of radius 10 (its upper half is the overhang).
+Surface arch(int arc_segments = 24);
+
+}  // namespace slim::test
