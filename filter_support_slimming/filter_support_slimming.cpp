@@ -1,8 +1,12 @@
 #include "filter_support_slimming.h"
 
+#include <algorithm>
 #include <exception>
 
+#include <vcg/complex/append.h>
+
 #include "core/overhang.h"
+#include "core/slimming.h"
 #include "vcg_adapters/surface_adapter.h"
 
 namespace {
@@ -16,10 +20,39 @@ slim::OverhangOptions overhangOptions(const RichParameterList& par) {
   return o;
 }
 
+// The filter's parameters -> the core's options. Ranges are checked by the core, which says what
+// is wrong in words the log can show.
+slim::SlimmingOptions slimmingOptions(const RichParameterList& par) {
+  slim::SlimmingOptions o;
+  const slim::OverhangOptions overhang = overhangOptions(par);
+  o.print_direction = overhang.print_direction;
+  o.alpha_max_deg = overhang.alpha_max_deg;
+  o.plate_tolerance = overhang.plate_tolerance;
+  o.resolution = par.getInt("resolution");
+  o.domain = par.getEnum("domain") == 1 ? slim::DomainKind::TetGen : slim::DomainKind::Voxel;
+  o.method = par.getEnum("method") == 1 ? slim::SlimmingMethod::Paper : slim::SlimmingMethod::Coherent;
+  o.max_iterations = par.getInt("maxIterations");
+  o.max_deviation_pct = par.getFloat("maxDeviation");
+  o.max_k = par.getInt("maxK");
+  return o;
+}
+
+void addPrintParameters(RichParameterList& par, float diag) {
+  par.addParam(RichPoint3f("printDirection", vcg::Point3f(0, 0, 1), "Print direction",
+                           "The direction the part grows in while printing (the build plate's normal). "
+                           "It need not be unit length."));
+  par.addParam(RichFloat("alphaMax", 45.0f, "Self-supporting angle (deg)",
+                         "The largest overhang, measured from the vertical, that prints without support. "
+                         "Faces that lean out further are risky. Must be in [0, 90)."));
+  par.addParam(RichAbsPerc("plateTolerance", 0.001f * diag, 0.0f, diag, "Build plate tolerance",
+                           "Faces whose three vertices all lie within this distance of the lowest point along "
+                           "the print direction rest on the build plate and are never risky."));
+}
+
 }  // namespace
 
 FilterSupportSlimming::FilterSupportSlimming() {
-  typeList << FP_OVERHANG_ANALYSIS;
+  typeList << FP_OVERHANG_ANALYSIS << FP_SUPPORT_SLIMMING;
   for (FilterIDType id : types()) actionList << new QAction(filterName(id), this);
 }
 
@@ -30,6 +63,7 @@ QString FilterSupportSlimming::pluginName() const { return "FilterSupportSlimmin
 QString FilterSupportSlimming::filterName(FilterIDType filter) const {
   switch (filter) {
     case FP_OVERHANG_ANALYSIS: return "Overhang Analysis";
+    case FP_SUPPORT_SLIMMING: return "Support Slimming";
   }
   return {};
 }
@@ -45,6 +79,19 @@ QString FilterSupportSlimming::filterInfo(FilterIDType filter) const {
              "(negative means risky; plate faces get +1), coloured on a fixed ramp from -1 (red) to +1 (blue) so that "
              "colours compare across meshes; the risky faces can be selected. The log reports the risky area.<br>"
              "From <i>Direct Computation of Minimal Rotation for Support Slimming</i>, &sect;I-A.";
+    case FP_SUPPORT_SLIMMING:
+      return "Reshapes the mesh so that it needs less support material when 3D printed along the <i>print "
+             "direction</i>, while keeping it as rigid as possible. The mesh is embedded in a tetrahedral domain "
+             "made from voxels; each iteration rotates every tetrahedron that holds overhanging (risky) faces by the "
+             "smallest rotation that makes them self-supporting, then blends the tetrahedra back together with an "
+             "as-rigid-as-possible solve. The part's base stays on the build plate.<br>"
+             "The result is a <b>new layer</b>; the input layer is not changed. On the result, face quality is "
+             "<i>n&middot;d + sin(&alpha;<sub>max</sub>)</i> (negative means still risky), coloured on the fixed "
+             "ramp of <i>Overhang Analysis</i>; the faces that are still risky are selected; vertex quality is the "
+             "displacement in mesh units. The run stops at the iteration limit, when the risky area stops falling, "
+             "or before any vertex moves further than the deviation budget.<br>"
+             "From <i>Direct Computation of Minimal Rotation for Support Slimming</i> (incremental LP on the Gauss "
+             "sphere, area-weighted K-means proxies, &sect;IV-B rigid features).";
   }
   return {};
 }
@@ -52,6 +99,7 @@ QString FilterSupportSlimming::filterInfo(FilterIDType filter) const {
 MeshFilterInterface::FilterClass FilterSupportSlimming::getClass(QAction* action) {
   switch (ID(action)) {
     case FP_OVERHANG_ANALYSIS: return MeshFilterInterface::Quality;
+    case FP_SUPPORT_SLIMMING: return MeshFilterInterface::Smoothing;
   }
   return MeshFilterInterface::Quality;
 }
@@ -64,6 +112,7 @@ int FilterSupportSlimming::postCondition(QAction* action) const {
   switch (ID(action)) {
     case FP_OVERHANG_ANALYSIS:
       return MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_FACEFLAGSELECT;
+    case FP_SUPPORT_SLIMMING: return MeshModel::MM_NONE;  // the input layer is left as it was
   }
   return MeshModel::MM_ALL;
 }
@@ -72,21 +121,39 @@ void FilterSupportSlimming::initParameterSet(QAction* action, MeshModel& m, Rich
   const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
   switch (ID(action)) {
     case FP_OVERHANG_ANALYSIS:
-      par.addParam(RichPoint3f("printDirection", vcg::Point3f(0, 0, 1), "Print direction",
-                               "The direction the part grows in while printing (the build plate's normal). "
-                               "It need not be unit length."));
-      par.addParam(RichFloat("alphaMax", 45.0f, "Self-supporting angle (deg)",
-                             "The largest overhang, measured from the vertical, that prints without support. "
-                             "Faces that lean out further are risky. Must be in [0, 90)."));
-      par.addParam(RichAbsPerc("plateTolerance", 0.001f * diag, 0.0f, diag, "Build plate tolerance",
-                               "Faces whose three vertices all lie within this distance of the lowest point along "
-                               "the print direction rest on the build plate and are never risky."));
+      addPrintParameters(par, diag);
       par.addParam(RichBool("selectRisky", true, "Select risky faces",
                             "Replace the current face selection with the risky faces."));
       par.addParam(RichBool("colorize", true, "Colorize",
                             "Colour the faces by their quality on a fixed ramp: red (-1) is the worst overhang, "
                             "green (0) the threshold, blue (+1) safe."));
       break;
+    case FP_SUPPORT_SLIMMING: {
+      const slim::SlimmingOptions defaults;
+      addPrintParameters(par, diag);
+      par.addParam(RichInt("resolution", defaults.resolution, "Voxel resolution",
+                           "Number of voxel cells along the longest side of the bounding box. The tetrahedral "
+                           "domain is made from these cells; finer follows smaller features but runs slower."));
+      par.addParam(RichEnum("domain", 0, QStringList() << "Voxel" << "TetGen", "Domain",
+                            "Voxel: tetrahedra from a voxel grid aligned with the print direction (works on open and "
+                            "non-manifold meshes). TetGen: a constrained tetrahedralization of the surface; needs a "
+                            "closed, clean, non-self-intersecting mesh."));
+      par.addParam(RichEnum("method", 0, QStringList() << "Coherent" << "Paper", "Method",
+                            "Coherent: the default, with coherent rotations and a stiffer response. Paper: the "
+                            "published method as written, for comparison."));
+      par.addParam(RichInt("maxIterations", defaults.max_iterations, "Max iterations",
+                           "The largest number of local/global iterations. 0 only embeds the mesh and writes it back."));
+      par.addParam(RichFloat("maxDeviation", float(defaults.max_deviation_pct), "Deviation budget (%)",
+                             "The largest distance any vertex may move, as a percentage of the bounding box "
+                             "diagonal. The iteration that would exceed it is undone and the run stops."));
+      par.addParam(RichInt("maxK", defaults.max_k, "Max proxies per tetrahedron",
+                           "When no single rotation can make every face in a tetrahedron self-supporting, its faces "
+                           "are clustered into at most this many proxy normals (area-weighted K-means)."));
+      par.addParam(RichBool("preserveSelection", false, "Preserve selection as rigid features",
+                            "Each connected piece of the current face selection moves as one rigid body, so a "
+                            "feature you care about keeps its shape."));
+      break;
+    }
   }
 }
 
@@ -97,13 +164,16 @@ bool FilterSupportSlimming::fail(const QString& reason) {
 }
 
 bool FilterSupportSlimming::applyFilter(QAction* action, MeshDocument& md, const RichParameterList& par,
-                                        vcg::CallBackPos*) {
+                                        vcg::CallBackPos* cb) {
   // Nothing may escape into MeshLab: an exception here would take the user's session down.
   try {
     switch (ID(action)) {
       case FP_OVERHANG_ANALYSIS: return applyOverhangAnalysis(md, par);
+      case FP_SUPPORT_SLIMMING: return applySupportSlimming(md, par, cb);
     }
     return fail("Unknown filter");
+  } catch (const slim::Cancelled&) {
+    return fail(QString("%1: cancelled; the document is unchanged").arg(action->text()));
   } catch (const std::exception& e) {
     return fail(QString("%1: %2").arg(action->text(), e.what()));
   } catch (...) {
@@ -129,5 +199,56 @@ bool FilterSupportSlimming::applyOverhangAnalysis(MeshDocument& md, const RichPa
       "%lld faces rest on the build plate",
       static_cast<long long>(report.risky_count), mm->cm.fn, report.risky_area, 100.0 * report.risky_share(),
       report.total_area, static_cast<long long>(report.plate_count));
+  return true;
+}
+
+bool FilterSupportSlimming::applySupportSlimming(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb) {
+  MeshModel* input = md.mm();
+  if (input == nullptr) return fail("Support Slimming: there is no current mesh");
+  if (input->cm.fn == 0) return fail("Support Slimming: the mesh has no faces; it needs a triangle mesh, not a point cloud");
+
+  slim::SlimmingOptions options = slimmingOptions(par);
+  if (par.getBool("preserveSelection")) {
+    options.rigid_features = slim::vcgx::selected_faces(input->cm);
+    if (std::none_of(options.rigid_features.begin(), options.rigid_features.end(), [](bool b) { return b; }))
+      return fail("Support Slimming: 'Preserve selection as rigid features' is on but no face is selected; "
+                  "select the features to keep rigid, or turn the option off");
+  }
+  if (cb != nullptr) {
+    // MeshLab's progress bar; a host whose callback returns false cancels the run.
+    options.progress = [cb](double fraction, const std::string& message) {
+      return cb(static_cast<int>(100.0 * fraction), message.c_str());
+    };
+  }
+
+  // Everything is computed before the document is touched: a failure or a cancel leaves no layer.
+  const slim::SlimmingResult r = slim::slim_supports(slim::vcgx::to_surface(input->cm), options);
+
+  MeshModel* output = md.addNewMesh("", input->label() + " slimmed", true);
+  try {
+    output->updateDataMask(input);
+    vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(output->cm, input->cm);
+    output->cm.Tr = input->cm.Tr;
+    output->updateDataMask(MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_VERTQUALITY);
+    slim::vcgx::write_positions(output->cm, r.surface.V);
+    slim::vcgx::write_face_results(output->cm, r.after.quality, true, &r.after.risky);
+    slim::vcgx::write_vertex_quality(output->cm, r.displacement);
+  } catch (...) {
+    md.delMesh(output);  // never leave a half-built layer behind
+    md.setCurrentMesh(input->id());
+    throw;
+  }
+
+  const slim::IterationStats& last = r.history.back();
+  Log("Support Slimming: risky area %.6g -> %.6g mm^2 (%.2f%% -> %.2f%% of the surface, %.1f%% less)",
+      r.before.risky_area, r.after.risky_area, 100.0 * r.before.risky_share(), 100.0 * r.after.risky_share(),
+      r.before.risky_area > 0 ? 100.0 * (1.0 - r.after.risky_area / r.before.risky_area) : 0.0);
+  Log("Support Slimming: %d iterations in %.2f s (%s); domain %d vertices, %d tets; solver %s", r.iterations,
+      r.seconds, r.stop_reason.c_str(), r.domain_vertices, r.domain_tets, r.solver_backend.c_str());
+  Log("Support Slimming: displacement max %.4g, mean %.4g mm; volume %.6g -> %.6g mm^3 (%+.2f%%); "
+      "AE %.2f%%; inverted tets %d",
+      last.max_displacement, last.mean_displacement, r.volume_before, r.volume_after,
+      r.volume_before != 0 ? 100.0 * (r.volume_after / r.volume_before - 1.0) : 0.0,
+      100.0 * last.approximation_error, last.inverted_tets);
   return true;
 }

@@ -14,7 +14,7 @@ class FilterSupportSlimming : public QObject, public MeshFilterInterface {
   Q_INTERFACES(MeshFilterInterface)
 
  public:
-  enum { FP_OVERHANG_ANALYSIS };
+  enum { FP_OVERHANG_ANALYSIS, FP_SUPPORT_SLIMMING };
 
   FilterSupportSlimming();
   ~FilterSupportSlimming() override;
@@ -31,6 +31,7 @@ class FilterSupportSlimming : public QObject, public MeshFilterInterface {
 
  private:
   bool applyOverhangAnalysis(MeshDocument& md, const RichParameterList& par);
+  bool applySupportSlimming(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb);
   // Puts the reason in the filter's error message and in the log, then returns false: with only
   // errorMessage, meshlabserver prints nothing but "Problem with filter".
   bool fail(const QString& reason);

@@ -1,5 +1,8 @@
 #include "vcg_adapters/mesh_io.h"
 
+#include <cctype>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include <vcg/complex/complex.h>
@@ -12,6 +15,7 @@
 namespace slim::vcgx {
 namespace {
 
+// Writing: the OBJ exporter needs a per-vertex normal type.
 class IoVertex;
 class IoFace;
 struct IoTypes : vcg::UsedTypes<vcg::Use<IoVertex>::AsVertexType, vcg::Use<IoFace>::AsFaceType> {};
@@ -21,9 +25,64 @@ class IoFace : public vcg::Face<IoTypes, vcg::face::VertexRef, vcg::face::Normal
                                 vcg::face::Color4b, vcg::face::BitFlags> {};
 class IoMesh : public vcg::tri::TriMesh<std::vector<IoVertex>, std::vector<IoFace>> {};
 
+// VCG 2020.09's OBJ reader turns face indices 0-based in SplitToken and then GoodObjIndex rejects
+// index 0, so it silently drops every face that uses the file's first vertex (MeshLab's own OBJ
+// import shares the bug). OBJ is simple enough to read here: v and f records, "v/t/n" tokens,
+// negative (relative) indices, polygons fanned into triangles; everything else is ignored.
+Surface load_obj(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path + ": cannot open the file");
+  std::vector<Eigen::Vector3d> v;
+  std::vector<Eigen::Vector3i> f;
+  std::string line;
+  for (long lineno = 1; std::getline(in, line); ++lineno) {
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      Eigen::Vector3d p;
+      if (!(ls >> p.x() >> p.y() >> p.z())) throw std::runtime_error("cannot read " + path + ": bad vertex on line " + std::to_string(lineno));
+      v.push_back(p);
+    } else if (tag == "f") {
+      std::vector<int> poly;
+      std::string token;
+      while (ls >> token) {
+        long idx = 0;
+        try {
+          idx = std::stol(token.substr(0, token.find('/')));
+        } catch (const std::exception&) {
+          throw std::runtime_error("cannot read " + path + ": bad face index '" + token + "' on line " + std::to_string(lineno));
+        }
+        idx = idx < 0 ? static_cast<long>(v.size()) + idx : idx - 1;
+        if (idx < 0 || idx >= static_cast<long>(v.size()))
+          throw std::runtime_error("cannot read " + path + ": face index out of range on line " + std::to_string(lineno));
+        poly.push_back(static_cast<int>(idx));
+      }
+      for (size_t k = 2; k < poly.size(); ++k) f.emplace_back(poly[0], poly[k - 1], poly[k]);
+    }
+  }
+  Surface s;
+  s.V.resize(static_cast<Eigen::Index>(v.size()), 3);
+  for (size_t i = 0; i < v.size(); ++i) s.V.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  s.F.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (size_t i = 0; i < f.size(); ++i) s.F.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
+  return s;
+}
+
+bool has_extension(const std::string& path, const std::string& ext) {
+  if (path.size() < ext.size()) return false;
+  std::string tail = path.substr(path.size() - ext.size());
+  for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return tail == ext;
+}
+
 }  // namespace
 
 Surface load_surface(const std::string& path, FaceExtras* extras) {
+  if (has_extension(path, ".obj")) {
+    if (extras) *extras = FaceExtras{};
+    return load_obj(path);
+  }
   IoMesh m;
   int mask = 0;
   const int err = vcg::tri::io::Importer<IoMesh>::Open(m, path.c_str(), mask);

@@ -53,6 +53,7 @@ OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options
       r.risky[fi] = true;
       ++r.risky_count;
       r.risky_area += area(f);
+      r.risky_deficit -= area(f) * r.quality(f);
     }
   }
   return r;

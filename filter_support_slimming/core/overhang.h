@@ -30,6 +30,9 @@ struct OverhangReport {
   Eigen::Index risky_count = 0;
   Eigen::Index plate_count = 0;
   double risky_area = 0.0;     // mm²
+  // sum over risky faces of area * -(n·d + tau) (mm²): how far the overhangs are from safe. It
+  // falls smoothly while faces tilt towards the threshold, when the risky area does not move yet.
+  double risky_deficit = 0.0;
   double total_area = 0.0;     // mm²
   double plate_height = 0.0;   // min over vertices of v·d (mm)
   double risky_share() const { return total_area > 0.0 ? risky_area / total_area : 0.0; }

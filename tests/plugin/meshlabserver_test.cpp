@@ -59,6 +59,34 @@ TEST(Meshlabserver, OverhangAnalysisScriptOnTheBunny) {
   fs::remove_all(out.parent_path());
 }
 
+TEST(Meshlabserver, SupportSlimmingScriptOnTheBunny) {
+  const std::string in = test::sample_bunny_path();
+  const fs::path out = scratch("bunny_slimmed.ply");
+  const test::ServerRun run = test::run_meshlabserver(
+      "-i '" + in + "' -o '" + out.string() + "' -m fq fc vq sa -s '" SLIM_SOURCE_DIR "/examples/support_slimming.mlx'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(run.output.find("Problem with filter"), std::string::npos) << run.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.output, m, std::regex(R"(risky area ([0-9.eE+-]+) -> ([0-9.eE+-]+) mm\^2)"))) << run.output;
+  const double before = std::stod(m[1]), after = std::stod(m[2]);
+  EXPECT_LT(after, 0.95 * before);
+
+  // meshlabserver saves the current layer: the new "slimmed" one, deformed, with face quality
+  // whose negative part is the logged risky area.
+  const Surface input = test::load_mesh(in);
+  vcgx::FaceExtras saved;
+  const Surface result = vcgx::load_surface(out.string(), &saved);
+  ASSERT_EQ(result.F.rows(), input.F.rows());
+  ASSERT_EQ(saved.quality.size(), input.F.rows());
+  EXPECT_GT((result.V - input.V).cwiseAbs().maxCoeff(), 1e-3);
+  const Eigen::VectorXd areas = face_areas(result);
+  double risky = 0.0;
+  for (Eigen::Index f = 0; f < areas.size(); ++f)
+    if (saved.quality(f) < 0) risky += areas(f);
+  EXPECT_NEAR(risky, after, 0.02 * after);
+  fs::remove_all(out.parent_path());
+}
+
 TEST(Meshlabserver, FailingFilterExplainsItselfInTheLog) {
   // A point cloud: the filter must fail with its reason, and meshlabserver must not crash.
   const fs::path in = scratch("points.ply");

@@ -16,6 +16,18 @@ using slim::test::PluginHarness;
 
 namespace {
 const QString kOverhang = "Overhang Analysis";
+const QString kSlimming = "Support Slimming";
+
+// Positions of a layer's vertices, in order.
+std::vector<vcg::Point3f> positions(const MeshModel& m) {
+  std::vector<vcg::Point3f> p;
+  for (const auto& v : m.cm.vert) p.push_back(v.cP());
+  return p;
+}
+
+// Stops the run at the second progress report, as a host with a cancel button would.
+int g_progress_calls = 0;
+bool cancel_soon(const int, const char*) { return ++g_progress_calls < 2; }
 
 // Reads an example .mlx the way meshlabserver does and returns the parameters of `filter`.
 RichParameterList script_params(const QString& file, const QString& filter) {
@@ -35,8 +47,10 @@ TEST(Plugin, LoadsWithItsMetadataAndFilters) {
   EXPECT_EQ(meta.value("name").toString(), "Support Slimming");
   EXPECT_EQ(meta.value("license").toString(), "GPL-3.0-or-later");
   EXPECT_EQ(meta.value("meshlabVersion").toString(), "2020.09");
-  ASSERT_NE(h.action(kOverhang), nullptr);
-  EXPECT_NE(h.plugin()->getClass(h.action(kOverhang)), MeshFilterInterface::Generic);
+  for (const QString& name : {kOverhang, kSlimming}) {
+    ASSERT_NE(h.action(name), nullptr) << name.toStdString();
+    EXPECT_NE(h.plugin()->getClass(h.action(name)), MeshFilterInterface::Generic);
+  }
 }
 
 TEST(Plugin, OverhangAnalysisWritesQualityColourAndSelection) {
@@ -79,17 +93,20 @@ TEST(Plugin, OverhangAnalysisLeavesSelectionAloneWhenAsked) {
   for (int f = 1; f < m->cm.fn; ++f) EXPECT_FALSE(m->cm.face[static_cast<size_t>(f)].IsS());
 }
 
-TEST(Plugin, ExampleScriptListsEveryParameterAndRuns) {
+TEST(Plugin, ExampleScriptsListEveryParameterAndRun) {
   PluginHarness h;
   ASSERT_TRUE(h.ok());
-  MeshDocument md;
-  test::add_layer(md, test::box({0, 0, 0}, {10, 10, 10}), "cube");
-  const RichParameterList defaults = h.defaults(kOverhang, md);
-  const RichParameterList scripted = script_params("overhang_analysis.mlx", kOverhang);
-  // meshlabserver asserts when a script omits a parameter: the example must list them all.
-  for (const RichParameter& p : defaults) EXPECT_TRUE(scripted.hasParameter(p.name())) << p.name().toStdString();
-  EXPECT_EQ(scripted.size(), defaults.size());
-  ASSERT_TRUE(h.apply(kOverhang, md, scripted)) << h.lastError().toStdString();
+  for (const auto& [file, filter] : {std::make_pair(QString("overhang_analysis.mlx"), kOverhang),
+                                     std::make_pair(QString("support_slimming.mlx"), kSlimming)}) {
+    MeshDocument md;
+    test::add_layer(md, test::t_shape(), "T");
+    const RichParameterList defaults = h.defaults(filter, md);
+    const RichParameterList scripted = script_params(file, filter);
+    // meshlabserver asserts when a script omits a parameter: the examples must list them all.
+    for (const RichParameter& p : defaults) EXPECT_TRUE(scripted.hasParameter(p.name())) << p.name().toStdString();
+    EXPECT_EQ(scripted.size(), defaults.size()) << file.toStdString();
+    ASSERT_TRUE(h.apply(filter, md, scripted)) << h.lastError().toStdString();
+  }
 }
 
 TEST(Plugin, EmptyMeshFailsWithAClearMessageInTheLog) {
@@ -119,6 +136,97 @@ TEST(Plugin, BadParametersFailWithoutTouchingTheLayer) {
   params.setValue("printDirection", Point3fValue(vcg::Point3f(0, 0, 0)));
   EXPECT_FALSE(h.apply(kOverhang, md, params));
   EXPECT_TRUE(h.lastError().contains("print direction")) << h.lastError().toStdString();
+}
+
+TEST(Plugin, SupportSlimmingAddsASlimmedLayerAndLeavesTheInputAlone) {
+  PluginHarness h;
+  ASSERT_TRUE(h.ok()) << h.error().toStdString();
+  MeshDocument md;
+  MeshModel* input = test::add_layer(md, test::load_mesh(test::sample_bunny_path()), "bunny");
+  const auto original = positions(*input);
+  RichParameterList params = h.defaults(kSlimming, md);
+  ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
+
+  ASSERT_EQ(md.meshList.size(), 2);
+  EXPECT_EQ(positions(*input), original);           // the input layer is untouched
+  EXPECT_FALSE(input->hasDataMask(MeshModel::MM_FACEQUALITY));
+  MeshModel* out = md.mm();
+  ASSERT_NE(out, input);
+  EXPECT_EQ(out->label(), "bunny slimmed");
+  EXPECT_EQ(out->cm.fn, input->cm.fn);
+  EXPECT_NE(positions(*out), original);
+  ASSERT_TRUE(out->hasDataMask(MeshModel::MM_FACEQUALITY));
+  ASSERT_TRUE(out->hasDataMask(MeshModel::MM_VERTQUALITY));
+
+  // Quality, selection and vertex quality say what the core says about the new shape.
+  const Surface after = vcgx::to_surface(out->cm);
+  OverhangOptions o;
+  o.plate_tolerance = params.getAbsPerc("plateTolerance");
+  const OverhangReport now = analyse_overhang(after, o);
+  const OverhangReport before = analyse_overhang(vcgx::to_surface(input->cm), o);
+  EXPECT_LT(now.risky_area, before.risky_area);
+  int selected = 0;
+  for (int f = 0; f < out->cm.fn; ++f) {
+    EXPECT_NEAR(out->cm.face[static_cast<size_t>(f)].cQ(), now.quality(f), 1e-4);
+    selected += out->cm.face[static_cast<size_t>(f)].IsS();
+  }
+  EXPECT_NEAR(selected, now.risky_count, 3);  // float rounding right at the threshold
+  for (int v = 0; v < out->cm.vn; ++v)
+    EXPECT_NEAR(out->cm.vert[static_cast<size_t>(v)].cQ(), (out->cm.vert[static_cast<size_t>(v)].cP() - original[static_cast<size_t>(v)]).Norm(), 1e-4);
+  const QString log = h.logLines().join("\n");
+  EXPECT_TRUE(log.contains("risky area")) << log.toStdString();
+  EXPECT_TRUE(log.contains("inverted tets 0")) << log.toStdString();
+}
+
+TEST(Plugin, SupportSlimmingPaperMethodRuns) {
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  MeshDocument md;
+  test::add_layer(md, test::load_mesh(test::sample_bunny_path()), "bunny");
+  RichParameterList params = h.defaults(kSlimming, md);
+  params.setValue("method", EnumValue(1));
+  ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
+  EXPECT_EQ(md.meshList.size(), 2);
+}
+
+TEST(Plugin, RigidFeaturesNeedASelection) {
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  MeshDocument md;
+  test::add_layer(md, test::t_shape(), "T");
+  RichParameterList params = h.defaults(kSlimming, md);
+  params.setValue("preserveSelection", BoolValue(true));
+  EXPECT_FALSE(h.apply(kSlimming, md, params));
+  EXPECT_TRUE(h.lastError().contains("no face is selected")) << h.lastError().toStdString();
+  EXPECT_TRUE(h.logLines().join("\n").contains("no face is selected"));
+  EXPECT_EQ(md.meshList.size(), 1);
+}
+
+TEST(Plugin, CancelLeavesNoHalfBuiltLayer) {
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  MeshDocument md;
+  MeshModel* input = test::add_layer(md, test::load_mesh(test::sample_bunny_path()), "bunny");
+  const auto original = positions(*input);
+  const RichParameterList params = h.defaults(kSlimming, md);
+  g_progress_calls = 0;
+  EXPECT_FALSE(h.plugin()->applyFilter(h.action(kSlimming), md, params, cancel_soon));
+  EXPECT_TRUE(h.lastError().contains("cancelled")) << h.lastError().toStdString();
+  EXPECT_EQ(md.meshList.size(), 1);
+  EXPECT_EQ(md.mm(), input);
+  EXPECT_EQ(positions(*input), original);
+}
+
+TEST(Plugin, SupportSlimmingRefusesBadSettingsWithoutAddingALayer) {
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  MeshDocument md;
+  test::add_layer(md, test::t_shape(), "T");
+  RichParameterList params = h.defaults(kSlimming, md);
+  params.setValue("resolution", IntValue(100000));  // the memory guard
+  EXPECT_FALSE(h.apply(kSlimming, md, params));
+  EXPECT_TRUE(h.lastError().contains("resolution")) << h.lastError().toStdString();
+  EXPECT_EQ(md.meshList.size(), 1);
 }
 
 int main(int argc, char** argv) {

@@ -20,6 +20,29 @@ Surface from_lists(const std::vector<Eigen::Vector3d>& v, const std::vector<Eige
   return s;
 }
 
+// One 1-to-4 midpoint split of every triangle; shared edges share their midpoint. The midpoints
+// are pushed onto the unit sphere when asked (icosphere).
+void split_in_four(std::vector<Eigen::Vector3d>& v, std::vector<Eigen::Vector3i>& f, bool onto_unit_sphere) {
+  std::map<std::pair<int, int>, int> mid;
+  auto midpoint = [&](int a, int b) {
+    const auto key = std::minmax(a, b);
+    auto it = mid.find(key);
+    if (it != mid.end()) return it->second;
+    const Eigen::Vector3d m = (v[static_cast<size_t>(a)] + v[static_cast<size_t>(b)]) / 2.0;
+    v.push_back(onto_unit_sphere ? m.normalized() : m);
+    return mid[key] = static_cast<int>(v.size()) - 1;
+  };
+  std::vector<Eigen::Vector3i> g;
+  for (const auto& t : f) {
+    const int a = midpoint(t(0), t(1)), b = midpoint(t(1), t(2)), c = midpoint(t(2), t(0));
+    g.emplace_back(t(0), a, c);
+    g.emplace_back(t(1), b, a);
+    g.emplace_back(t(2), c, b);
+    g.emplace_back(a, b, c);
+  }
+  f.swap(g);
+}
+
 // Extrudes a simple polygon given in the XZ plane (counter-clockwise in (x, z)) along Y from y0
 // to y1. cap lists triangles of the polygon (indices into profile, counter-clockwise in (x, z)).
 Surface extrude_xz(const std::vector<Eigen::Vector2d>& profile, const std::vector<Eigen::Vector3i>& cap,
@@ -95,25 +118,7 @@ Surface icosphere(int levels, double r, const Eigen::Vector3d& c) {
   std::vector<Eigen::Vector3i> f{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                                  {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
                                  {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (int l = 0; l < levels; ++l) {
-    std::map<std::pair<int, int>, int> mid;
-    auto midpoint = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      v.push_back((v[a] + v[b]).normalized());
-      return mid[key] = static_cast<int>(v.size()) - 1;
-    };
-    std::vector<Eigen::Vector3i> g;
-    for (const auto& tri : f) {
-      const int a = midpoint(tri(0), tri(1)), b = midpoint(tri(1), tri(2)), cc = midpoint(tri(2), tri(0));
-      g.emplace_back(tri(0), a, cc);
-      g.emplace_back(tri(1), b, a);
-      g.emplace_back(tri(2), cc, b);
-      g.emplace_back(a, b, cc);
-    }
-    f.swap(g);
-  }
+  for (int l = 0; l < levels; ++l) split_in_four(v, f, /*onto_unit_sphere=*/true);
   for (auto& p : v) p = c + r * p;
   return from_lists(v, f);
 }
@@ -240,4 +245,37 @@ Surface arch(int arc_segments) {
   return extrude_xz(profile, ear_clip(profile), -5, 5);
 }
 
+}  // namespace slim::test
+
+namespace slim::test {
+std::vector<ShapeCase> domain_cases() {
+  std::vector<ShapeCase> cases;
+  cases.push_back({"cube", box({0, 0, 0}, {10, 20, 30})});  // at 24 cells its faces lie on grid planes
+  cases.push_back({"sphere", icosphere(3)});
+  cases.push_back({"T", t_shape()});
+  cases.push_back({"open hemisphere", open_hemisphere(3), Eigen::Vector3d::UnitZ(), false});
+  cases.push_back({"two cubes sharing an edge", two_cubes_sharing_edge()});
+  const Eigen::Matrix3d R = axis_angle({1, 2, 3}, 0.7);
+  cases.push_back({"turned T, tilted print direction", transformed(t_shape(), R, {3, -2, 5}),
+                   Eigen::Vector3d(0.3, -0.5, 0.8).normalized()});
+#ifdef SLIM_TESTS_HAVE_VCG
+  cases.push_back({"bunny", load_mesh(sample_bunny_path())});
+#endif
+  return cases;
+}
+
+Surface triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  return from_lists({a, b, c}, {{0, 1, 2}});
+}
+}  // namespace slim::test
+
+namespace slim::test {
+Surface refined(const Surface& s, int levels) {
+  std::vector<Eigen::Vector3d> v;
+  for (Eigen::Index i = 0; i < s.V.rows(); ++i) v.emplace_back(s.V.row(i).transpose());
+  std::vector<Eigen::Vector3i> f;
+  for (Eigen::Index i = 0; i < s.F.rows(); ++i) f.emplace_back(s.F.row(i).transpose());
+  for (int l = 0; l < levels; ++l) split_in_four(v, f, /*onto_unit_sphere=*/false);
+  return from_lists(v, f);
+}
 }  // namespace slim::test

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/surface.h"
 
@@ -59,4 +60,29 @@ Surface mushroom(int segments = 48);
 // semicircular opening of radius 10 (its upper half is the overhang).
 Surface arch(int arc_segments = 24);
 
+}  // namespace slim::test
+
+namespace slim::test {
+
+// A named shape with the print direction to use for it: the cube, the sphere, the T, an open
+// hemisphere, two cubes sharing one edge, the T turned arbitrarily with a tilted print direction,
+// and the sample bunny when VCG can load it. `closed` says whether it encloses a volume.
+struct ShapeCase {
+  std::string name;
+  Surface surface;
+  Eigen::Vector3d print_direction = Eigen::Vector3d::UnitZ();
+  bool closed = true;
+};
+std::vector<ShapeCase> domain_cases();
+
+// One triangle (a, b, c): the simplest open surface.
+Surface triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+}  // namespace slim::test
+
+namespace slim::test {
+// Splits every triangle into 4 at its edge midpoints, `levels` times (shared edges share their
+// midpoint, so a closed surface stays closed). The shape is unchanged; only its tessellation is
+// finer, as a scanned or remeshed part would be.
+Surface refined(const Surface& s, int levels);
 }  // namespace slim::test

@@ -1,0 +1,48 @@
+// Time per slim::min_rotation call on realistic risky patches, tau = sin 45°, d = +Z.
+//   Clustered: normals within 40° of a random downward direction (one tet's worth of a curved
+//              underside); a fresh patch each call, cycling through 64 of them.
+//   LowerHemisphere: normals uniform on the lower hemisphere (a worst case: wide, mostly risky).
+// Run: build/bench/min_rotation_bench  (medians of 5 repetitions are printed).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/min_rotation.h"
+#include "support/min_rotation_reference.h"
+
+namespace {
+
+const double kTau = std::sin(M_PI / 4);
+const Eigen::Vector3d kUp = Eigen::Vector3d::UnitZ();
+
+std::vector<Eigen::Matrix3Xd> patches(int n, bool clustered, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<Eigen::Matrix3Xd> all;
+  for (int k = 0; k < 64; ++k) {
+    const Eigen::Vector3d down = slim::test::random_in_cap(rng, -kUp, M_PI / 2);
+    all.push_back(clustered ? slim::test::random_normals_in_cap(rng, n, down, 40 * M_PI / 180)
+                            : slim::test::random_normals_in_cap(rng, n, -kUp, M_PI / 2));
+  }
+  return all;
+}
+
+void run(benchmark::State& state, bool clustered) {
+  const std::vector<Eigen::Matrix3Xd> all = patches(static_cast<int>(state.range(0)), clustered, 42);
+  size_t k = 0, feasible = 0;
+  for (auto _ : state) {
+    const slim::MinRotation r = slim::min_rotation(all[k++ % all.size()], kUp, kTau);
+    feasible += r.feasible;
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["feasible_share"] = static_cast<double>(feasible) / static_cast<double>(k);
+}
+
+void Clustered(benchmark::State& state) { run(state, true); }
+void LowerHemisphere(benchmark::State& state) { run(state, false); }
+
+}  // namespace
+
+BENCHMARK(Clustered)->RangeMultiplier(4)->Range(4, 1024)->Repetitions(5)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(LowerHemisphere)->RangeMultiplier(4)->Range(4, 1024)->Repetitions(5)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);

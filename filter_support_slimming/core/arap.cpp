@@ -1,0 +1,410 @@
+#include "core/arap.h"
+
+#include <dlfcn.h>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+#ifdef SLIM_HAVE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+namespace slim {
+
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+// The energy is summed over fixed blocks of tets, then the blocks in order: the same bits for
+// any thread count.
+constexpr int kEnergyBlock = 4096;
+// Fewer free vertices than this are gathered on one thread: the work (~15 ns a vertex) is then
+// smaller than waking a thread team, and on a busy machine a team can wait a whole time slice.
+constexpr int kParallelRows = 4096;
+
+// OpenBLAS splits its kernels across threads, and the split changes the rounding: on this
+// machine CHOLMOD's supernodal factor + solve gave different bits with OPENBLAS_NUM_THREADS=1
+// and 2 (box grids of 2k to 50k vertices; the same count always repeats exactly). The optimizer's
+// stopping rule reads statistics that must repeat, so BLAS is held at ArapOptions::blas_threads
+// for the duration of each call and restored afterwards. The price is the factorization's
+// parallel speed-up only (setup of a 10k-vertex grid 0.14 s on one thread, 0.08 s on two; at 50k
+// 1.2 s against 1.1 s on a busy 2-core machine); the 3-column solve is memory-bound and gained
+// nothing from a second thread.
+//
+// The functions are looked up at run time: they exist only when the BLAS behind CHOLMOD is
+// OpenBLAS (with any other BLAS this does nothing). A plugin's dependencies are loaded with
+// RTLD_LOCAL and are invisible to RTLD_DEFAULT, so the already-loaded library is asked too.
+struct OpenBlasThreads {
+  int (*get)() = nullptr;
+  void (*set)(int) = nullptr;
+};
+
+const OpenBlasThreads& openblas_threads() {
+  static const OpenBlasThreads api = [] {
+    OpenBlasThreads a;
+    std::vector<void*> scopes = {RTLD_DEFAULT};
+    for (const char* name : {"libopenblas.so.0", "libopenblas.so"})
+      if (void* h = dlopen(name, RTLD_LAZY | RTLD_NOLOAD)) scopes.push_back(h);  // never loads
+    for (void* scope : scopes) {
+      a.get = reinterpret_cast<int (*)()>(dlsym(scope, "openblas_get_num_threads"));
+      a.set = reinterpret_cast<void (*)(int)>(dlsym(scope, "openblas_set_num_threads"));
+      if (a.get && a.set) return a;
+    }
+    return OpenBlasThreads{};
+  }();
+  return api;
+}
+
+class BlasThreadsScope {
+ public:
+  explicit BlasThreadsScope(int threads) {
+    const OpenBlasThreads& api = openblas_threads();
+    if (threads <= 0 || !api.set) return;
+    previous_ = api.get();
+    if (previous_ == threads) return;
+    set_ = api.set;
+    set_(threads);
+  }
+  ~BlasThreadsScope() {
+    if (set_) set_(previous_);
+  }
+  BlasThreadsScope(const BlasThreadsScope&) = delete;
+  BlasThreadsScope& operator=(const BlasThreadsScope&) = delete;
+
+ private:
+  void (*set_)(int) = nullptr;
+  int previous_ = 0;
+};
+
+// Union-find over vertices, to find the connected components of the weighted edges.
+struct Components {
+  std::vector<int> parent;
+  explicit Components(int n) : parent(static_cast<size_t>(n)) {
+    std::iota(parent.begin(), parent.end(), 0);
+  }
+  int find(int v) {
+    while (parent[static_cast<size_t>(v)] != v) {
+      parent[static_cast<size_t>(v)] = parent[static_cast<size_t>(parent[static_cast<size_t>(v)])];
+      v = parent[static_cast<size_t>(v)];
+    }
+    return v;
+  }
+  // The smaller root wins, so every root is its component's lowest vertex index.
+  void join(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
+  }
+};
+
+}  // namespace
+
+// One factorization, behind whichever backend the options chose.
+struct ArapSolver::Impl {
+  int nv = 0, nt = 0;
+  Tets T;
+  Eigen::VectorXd w;                             // #T
+  std::vector<Eigen::Matrix<double, 3, 4>> rest;  // per tet [-(e1+e2+e3), e1, e2, e3] at rest
+  std::vector<int> free_index;                   // #V: row in the unknowns, -1 when held
+  std::vector<int> free_vertices, held_vertices;
+  // CSR incidence of the free vertices: entries tet * 4 + corner, tets ascending.
+  std::vector<int> inc_begin, inc;
+
+  ArapOptions options;
+  std::string backend;
+  int factorizations = 0;
+  std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>> ldlt;
+#ifdef SLIM_HAVE_CHOLMOD
+  std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>> cholmod_super;
+  std::unique_ptr<Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower>> cholmod_simplicial;
+#endif
+
+  void check_and_store(const TetMesh& mesh, const Eigen::VectorXd* weights);
+  void split_vertices(const std::vector<int>& pinned);
+  void build_incidence();
+  SparseMatrix free_matrix() const;
+  void factor(const SparseMatrix& K);
+  void check_L(const std::vector<Eigen::Matrix3d>& L) const;
+};
+
+void ArapSolver::Impl::check_and_store(const TetMesh& mesh, const Eigen::VectorXd* weights) {
+  nv = static_cast<int>(mesh.V.rows());
+  nt = static_cast<int>(mesh.T.rows());
+  if (nt == 0) throw std::invalid_argument("ArapSolver: the domain has no tets");
+  if (!mesh.V.allFinite()) throw std::invalid_argument("ArapSolver: non-finite rest position");
+  if ((mesh.T.array() < 0).any() || (mesh.T.array() >= nv).any())
+    throw std::invalid_argument("ArapSolver: a tet indexes outside the vertex list");
+  if (weights && weights->size() != nt)
+    throw std::invalid_argument("ArapSolver: expected one weight per tet");
+  T = mesh.T;
+  w.resize(nt);
+  rest.resize(static_cast<size_t>(nt));
+  for (int t = 0; t < nt; ++t) {
+    const Eigen::Matrix3d E = edge_matrix(mesh.V, T.row(t));
+    const double vol = E.determinant() / 6.0;
+    const double longest = E.colwise().norm().maxCoeff();
+    // Relative to the tet's own size, so the test does not depend on the units.
+    if (!(vol > 1e-12 * longest * longest * longest)) {
+      std::ostringstream msg;
+      msg << "ArapSolver: rest tet " << t << " has volume " << vol
+          << (vol < 0 ? " (inverted)" : " (degenerate)") << "; the domain must be positively oriented";
+      throw std::invalid_argument(msg.str());
+    }
+    rest[static_cast<size_t>(t)] << -E.rowwise().sum(), E;
+    w(t) = weights ? (*weights)(t) : vol;
+    if (!std::isfinite(w(t)) || w(t) < 0.0) {
+      std::ostringstream msg;
+      msg << "ArapSolver: weight " << w(t) << " of tet " << t << " is not finite and >= 0";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+}
+
+void ArapSolver::Impl::split_vertices(const std::vector<int>& pinned) {
+  std::vector<char> held(static_cast<size_t>(nv), 0);
+  for (int p : pinned) {
+    if (p < 0 || p >= nv) throw std::invalid_argument("ArapSolver: pinned vertex index out of range");
+    held[static_cast<size_t>(p)] = 1;
+  }
+  // Components of the edges that carry weight; a vertex on none of them is held (nothing in E
+  // determines it), and every other component needs a held vertex or K is singular.
+  Components comp(nv);
+  std::vector<char> used(static_cast<size_t>(nv), 0);
+  for (int t = 0; t < nt; ++t) {
+    if (!(w(t) > 0.0)) continue;
+    for (int j = 0; j < 4; ++j) used[static_cast<size_t>(T(t, j))] = 1;
+    for (int j = 1; j < 4; ++j) comp.join(T(t, 0), T(t, j));
+  }
+  std::vector<char> root_held(static_cast<size_t>(nv), 0);
+  for (int v = 0; v < nv; ++v) {
+    if (!used[static_cast<size_t>(v)]) held[static_cast<size_t>(v)] = 1;
+    if (held[static_cast<size_t>(v)]) root_held[static_cast<size_t>(comp.find(v))] = 1;
+  }
+  for (int v = 0; v < nv; ++v) {
+    if (comp.find(v) != v || root_held[static_cast<size_t>(v)]) continue;
+    if (!options.anchor_floating_components) {
+      std::ostringstream msg;
+      msg << "ArapSolver: the component containing vertex " << v
+          << " has no pinned vertex, so its position is undetermined; pin one of its vertices";
+      throw std::invalid_argument(msg.str());
+    }
+    held[static_cast<size_t>(v)] = 1;  // v is the component's lowest index (see Components)
+  }
+  free_index.assign(static_cast<size_t>(nv), -1);
+  for (int v = 0; v < nv; ++v) {
+    if (held[static_cast<size_t>(v)]) {
+      held_vertices.push_back(v);
+    } else {
+      free_index[static_cast<size_t>(v)] = static_cast<int>(free_vertices.size());
+      free_vertices.push_back(v);
+    }
+  }
+}
+
+void ArapSolver::Impl::build_incidence() {
+  const size_t nf = free_vertices.size();
+  inc_begin.assign(nf + 1, 0);
+  for (int t = 0; t < nt; ++t)
+    for (int j = 0; j < 4; ++j) {
+      const int f = free_index[static_cast<size_t>(T(t, j))];
+      if (f >= 0) ++inc_begin[static_cast<size_t>(f) + 1];
+    }
+  for (size_t f = 0; f < nf; ++f) inc_begin[f + 1] += inc_begin[f];
+  inc.resize(static_cast<size_t>(inc_begin[nf]));
+  std::vector<int> fill(inc_begin.begin(), inc_begin.end() - 1);
+  for (int t = 0; t < nt; ++t)  // tets ascending: the summation order of assemble_rhs
+    for (int j = 0; j < 4; ++j) {
+      const int f = free_index[static_cast<size_t>(T(t, j))];
+      if (f >= 0) inc[static_cast<size_t>(fill[static_cast<size_t>(f)]++)] = 4 * t + j;
+    }
+}
+
+// K_ff, lower triangle: each tet adds w_t to the Laplacian of its edges (v0, vj), j = 1..3.
+SparseMatrix ArapSolver::Impl::free_matrix() const {
+  const int nf = static_cast<int>(free_vertices.size());
+  Eigen::VectorXd diag = Eigen::VectorXd::Zero(nf);
+  std::vector<Eigen::Triplet<double, int>> trip;
+  trip.reserve(static_cast<size_t>(3 * nt + nf));
+  for (int t = 0; t < nt; ++t) {
+    const int a = free_index[static_cast<size_t>(T(t, 0))];
+    for (int j = 1; j < 4; ++j) {
+      const int b = free_index[static_cast<size_t>(T(t, j))];
+      if (a >= 0) diag(a) += w(t);
+      if (b >= 0) diag(b) += w(t);
+      if (a >= 0 && b >= 0) trip.emplace_back(std::max(a, b), std::min(a, b), -w(t));
+    }
+  }
+  for (int f = 0; f < nf; ++f) trip.emplace_back(f, f, diag(f));
+  SparseMatrix K(nf, nf);
+  K.setFromTriplets(trip.begin(), trip.end());
+  return K;
+}
+
+namespace {
+template <class Solver>
+std::unique_ptr<Solver> factor_with(const SparseMatrix& K) {
+  auto s = std::make_unique<Solver>();
+  s->compute(K);
+  if (s->info() != Eigen::Success)
+    throw std::runtime_error(
+        "ArapSolver: the factorization of the global step failed (matrix not positive definite: "
+        "check for degenerate tets or weights)");
+  return s;
+}
+}  // namespace
+
+void ArapSolver::Impl::factor(const SparseMatrix& K) {
+  using B = ArapOptions::Backend;
+  B b = options.backend;
+#ifdef SLIM_HAVE_CHOLMOD
+  if (b == B::Auto) b = B::Cholmod;
+  const BlasThreadsScope blas(options.blas_threads);
+  if (b == B::Cholmod) {
+    cholmod_super = factor_with<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>(K);
+    backend = "CHOLMOD supernodal";
+  } else if (b == B::CholmodSimplicial) {
+    cholmod_simplicial = factor_with<Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower>>(K);
+    backend = "CHOLMOD simplicial";
+  }
+#else
+  if (b == B::Auto) b = B::EigenLDLT;
+  if (b != B::EigenLDLT)
+    throw std::invalid_argument("ArapSolver: CHOLMOD was not built in; use Backend::EigenLDLT or Auto");
+#endif
+  if (b == B::EigenLDLT) {
+    ldlt = factor_with<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>>(K);
+    backend = "Eigen SimplicialLDLT";
+  }
+  ++factorizations;
+}
+
+void ArapSolver::Impl::check_L(const std::vector<Eigen::Matrix3d>& L) const {
+  if (static_cast<int>(L.size()) != nt) throw std::invalid_argument("ArapSolver: expected one L per tet");
+}
+
+ArapSolver::ArapSolver(const TetMesh& rest, const std::vector<int>& pinned, const ArapOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
+  impl_->check_and_store(rest, nullptr);
+  impl_->split_vertices(pinned);
+  impl_->build_incidence();
+  if (!impl_->free_vertices.empty()) impl_->factor(impl_->free_matrix());
+}
+
+ArapSolver::ArapSolver(const TetMesh& rest, const Eigen::VectorXd& weights, const std::vector<int>& pinned,
+                       const ArapOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
+  impl_->check_and_store(rest, &weights);
+  impl_->split_vertices(pinned);
+  impl_->build_incidence();
+  if (!impl_->free_vertices.empty()) impl_->factor(impl_->free_matrix());
+}
+
+ArapSolver::~ArapSolver() = default;
+ArapSolver::ArapSolver(ArapSolver&&) noexcept = default;
+ArapSolver& ArapSolver::operator=(ArapSolver&&) noexcept = default;
+
+// Row f of K_ff x_f = b_f - K_fh x_h for the free vertex v = free_vertices[f]:
+//   b:    the gradient terms, w_t L_t e_j at corner j (j = 1..3) and -w_t L_t (e1+e2+e3) at corner 0;
+//   K_fh: w_t times each held vertex across one of v's basis edges.
+// Each row is gathered by one thread through the incidence list, in ascending tet order.
+Eigen::MatrixXd ArapSolver::assemble_rhs(const std::vector<Eigen::Matrix3d>& L, const Points& V_held) const {
+  const Impl& m = *impl_;
+  m.check_L(L);
+  if (V_held.rows() != m.nv) throw std::invalid_argument("ArapSolver: V_held must have one row per vertex");
+  const int nf = static_cast<int>(m.free_vertices.size());
+  Eigen::MatrixXd rhs(nf, 3);
+#pragma omp parallel for schedule(static) if (nf >= kParallelRows)
+  for (int f = 0; f < nf; ++f) {
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (int k = m.inc_begin[static_cast<size_t>(f)]; k < m.inc_begin[static_cast<size_t>(f) + 1]; ++k) {
+      const int t = m.inc[static_cast<size_t>(k)] / 4, j = m.inc[static_cast<size_t>(k)] % 4;
+      const double wt = m.w(t);
+      b += wt * (L[static_cast<size_t>(t)] * m.rest[static_cast<size_t>(t)].col(j));
+      // The other ends of v's basis edges: v1..v3 from corner 0, v0 from the others.
+      for (int o = (j == 0 ? 1 : 0); o < (j == 0 ? 4 : 1); ++o) {
+        const int u = m.T(t, o);
+        if (m.free_index[static_cast<size_t>(u)] < 0) b += wt * V_held.row(u).transpose();
+      }
+    }
+    rhs.row(f) = b.transpose();
+  }
+  return rhs;
+}
+
+Eigen::MatrixXd ArapSolver::back_substitute(const Eigen::MatrixXd& rhs) const {
+  const Impl& m = *impl_;
+  if (rhs.rows() != static_cast<Eigen::Index>(m.free_vertices.size()) || rhs.cols() != 3)
+    throw std::invalid_argument("ArapSolver: the right-hand side must be #free by 3");
+  if (m.free_vertices.empty()) return Eigen::MatrixXd(0, 3);
+  Eigen::MatrixXd x;
+  bool ok = true;
+#ifdef SLIM_HAVE_CHOLMOD
+  const BlasThreadsScope blas(m.options.blas_threads);
+  if (m.cholmod_super) {
+    x = m.cholmod_super->solve(rhs);
+    ok = m.cholmod_super->info() == Eigen::Success;
+  } else if (m.cholmod_simplicial) {
+    x = m.cholmod_simplicial->solve(rhs);
+    ok = m.cholmod_simplicial->info() == Eigen::Success;
+  }
+#endif
+  if (m.ldlt) x = m.ldlt->solve(rhs);
+  if (!ok || !x.allFinite())
+    throw std::runtime_error("ArapSolver: the global step produced non-finite positions (non-finite L?)");
+  return x;
+}
+
+Points ArapSolver::solve(const std::vector<Eigen::Matrix3d>& L, const Points& V_held) const {
+  const Eigen::MatrixXd x = back_substitute(assemble_rhs(L, V_held));
+  Points V = V_held;
+  for (size_t f = 0; f < impl_->free_vertices.size(); ++f)
+    V.row(impl_->free_vertices[f]) = x.row(static_cast<Eigen::Index>(f));
+  return V;
+}
+
+double ArapSolver::energy(const Points& V, const std::vector<Eigen::Matrix3d>& L) const {
+  const Impl& m = *impl_;
+  m.check_L(L);
+  if (V.rows() != m.nv) throw std::invalid_argument("ArapSolver: V must have one row per vertex");
+  const int blocks = (m.nt + kEnergyBlock - 1) / kEnergyBlock;
+  std::vector<double> partial(static_cast<size_t>(blocks), 0.0);
+#pragma omp parallel for schedule(static) if (blocks > 1)
+  for (int b = 0; b < blocks; ++b) {
+    double s = 0.0;
+    for (int t = b * kEnergyBlock; t < std::min(m.nt, (b + 1) * kEnergyBlock); ++t) {
+      const Eigen::Matrix3d R = L[static_cast<size_t>(t)] * m.rest[static_cast<size_t>(t)].rightCols<3>();
+      s += m.w(t) * (edge_matrix(V, m.T.row(t)) - R).squaredNorm();
+    }
+    partial[static_cast<size_t>(b)] = s;
+  }
+  double e = 0.0;
+  for (double s : partial) e += s;
+  return e;
+}
+
+int ArapSolver::num_vertices() const { return impl_->nv; }
+int ArapSolver::num_tets() const { return impl_->nt; }
+const std::vector<int>& ArapSolver::free_vertices() const { return impl_->free_vertices; }
+const std::vector<int>& ArapSolver::held_vertices() const { return impl_->held_vertices; }
+const Eigen::VectorXd& ArapSolver::weights() const { return impl_->w; }
+std::string ArapSolver::backend_name() const {
+  return impl_->backend.empty() ? std::string("none (every vertex held)") : impl_->backend;
+}
+int ArapSolver::factorizations() const { return impl_->factorizations; }
+
+bool ArapSolver::cholmod_available() {
+#ifdef SLIM_HAVE_CHOLMOD
+  return true;
+#else
+  return false;
+#endif
+}
+
+}  // namespace slim

@@ -1,0 +1,570 @@
+#include "core/min_rotation.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace slim {
+
+namespace {
+
+// Normals and d may come from float data: a little off unit length is accepted and renormalised.
+constexpr double kUnitTolerance = 1e-6;
+// Candidates are screened against the best angle so far with this slack (in units of cos(angle)),
+// so rounding in the screening arithmetic never throws the true answer away.
+constexpr double kScreenSlack = 1e-9;
+// From this many normals on, crossings come from the hull edges rather than from all pairs.
+constexpr Eigen::Index kHullFrom = 24;  // measured crossover
+// Below this length a tangent direction is rounding noise and the tie-break direction is used.
+constexpr double kTinyTangent = 1e-14;
+
+void check_inputs(const Eigen::Matrix3Xd& normals, const Eigen::Vector3d& d, double tau,
+                  const MinRotationOptions& options) {
+  if (!(tau >= 0.0 && tau < 1.0))
+    throw std::invalid_argument("min_rotation: tau = sin(alpha_max) must be in [0, 1), got " +
+                                std::to_string(tau));
+  if (!d.allFinite() || std::abs(d.norm() - 1.0) > kUnitTolerance)
+    throw std::invalid_argument("min_rotation: the print direction d must be a finite unit vector");
+  check_face_normals(normals, "min_rotation");
+  if (!options.tie_break.allFinite())
+    throw std::invalid_argument("min_rotation: tie_break must be finite");
+  if (!(options.tie_tolerance >= 0.0) || !std::isfinite(options.tie_tolerance))
+    throw std::invalid_argument("min_rotation: tie_tolerance must be a finite angle >= 0");
+}
+
+// Unit vector perpendicular to d: the caller's tie_break, else +X, else +Y, projected.
+Eigen::Vector3d tie_direction(const Eigen::Vector3d& d, const Eigen::Vector3d& tie_break) {
+  for (const Eigen::Vector3d& v : {tie_break, Eigen::Vector3d(Eigen::Vector3d::UnitX()),
+                                   Eigen::Vector3d(Eigen::Vector3d::UnitY())}) {
+    const Eigen::Vector3d w = v - v.dot(d) * d;
+    const double length = w.norm();
+    if (length > 1e-6 * v.norm()) return w / length;
+  }
+  return Eigen::Vector3d::UnitZ();  // unreachable for a unit d: X and Y cannot both be parallel to it
+}
+
+// The unit normals that constrain anything: zero columns (zero-area faces) dropped.
+Eigen::Matrix3Xd nonzero_unit_columns(const Eigen::Matrix3Xd& normals) {
+  Eigen::Matrix3Xd unit(3, normals.cols());
+  Eigen::Index count = 0;
+  for (Eigen::Index i = 0; i < normals.cols(); ++i) {
+    const double length = normals.col(i).norm();
+    if (length > 0.0) unit.col(count++) = normals.col(i) / length;
+  }
+  unit.conservativeResize(3, count);
+  return unit;
+}
+
+// Edges of the convex hull of m >= 4 distinct unit vectors (3 by m), with the two vertices facing
+// each edge. Circles i and j can only
+// meet at a feasible point if (i, j) is a hull edge: at a feasible crossing p the plane
+// x·p = -tau has every normal on its side x·p >= -tau and n_i, n_j on it, so it supports the
+// hull along an edge (i, j). (This is the spherical Delaunay triangulation of the cap centres.)
+//
+// Incremental construction in a fixed pseudo-random order; every point not yet added waits in
+// the outside set of one facet it sees (Quickhull), so the expected cost is O(m log m). Returns
+// false, and the caller falls back to all pairs, whenever an orientation test is too close to 0
+// to trust: near-duplicate normals, or four nearly co-circular ones.
+class SphereHullEdges {
+ public:
+  explicit SphereHullEdges(const Eigen::Matrix3Xd& points)
+      : p_(points), next_outside_(static_cast<size_t>(points.cols()), -1),
+        holder_(static_cast<size_t>(points.cols()), -1), start_at_(static_cast<size_t>(points.cols()), -1) {}
+
+  struct Edge {
+    int i, j;  // the edge, i < j
+    int k, l;  // the third vertices of its two facets
+  };
+
+  bool build(std::vector<Edge>& edges) {
+    facets_.reserve(static_cast<size_t>(8 * p_.cols()));  // ~6 per point are ever made
+    if (!start_simplex()) return false;
+    for (int q : insertion_order())
+      if (!add_point(q)) return false;
+    edges.clear();
+    for (const Facet& f : facets_) {
+      if (!f.alive) continue;
+      for (int e = 0; e < 3; ++e) {
+        const int i = f.v[e], j = f.v[(e + 1) % 3];
+        if (i > j) continue;  // each edge once
+        const Facet& g = facets_[static_cast<size_t>(f.next[e])];
+        const int l = g.v[0] != i && g.v[0] != j ? g.v[0] : (g.v[1] != i && g.v[1] != j ? g.v[1] : g.v[2]);
+        edges.push_back({i, j, f.v[(e + 2) % 3], l});
+      }
+    }
+    return true;
+  }
+
+ private:
+  // Heights are 6 x tetrahedron volumes of unit vectors, computed to ~1e-15: trust beyond 1e-12.
+  static constexpr double kTrusted = 1e-12;
+
+  struct Facet {
+    std::array<int, 3> v;      // counter-clockwise seen from outside
+    std::array<int, 3> next;   // neighbour across the edge v[e] -> v[e + 1]
+    Eigen::Vector3d normal;    // (v1 - v0) × (v2 - v0), outward
+    double offset;             // normal·v0
+    int outside = -1;          // first point of its outside set
+    int stamp = -1;            // 2 s: visible from the point added in step s; 2 s + 1: not visible
+    bool alive = true;
+  };
+
+  double height(const Facet& f, int q) const { return f.normal.dot(p_.col(q)) - f.offset; }
+
+  int add_facet(int a, int b, int c) {
+    Facet f;
+    f.v = {a, b, c};
+    f.next = {-1, -1, -1};
+    f.normal = (p_.col(b) - p_.col(a)).cross(p_.col(c) - p_.col(a));
+    f.offset = f.normal.dot(p_.col(a));
+    facets_.push_back(f);
+    return static_cast<int>(facets_.size()) - 1;
+  }
+
+  // Puts q in the outside set of the first listed facet it clearly sees; false when it sees none
+  // clearly (a unit vector is never inside the hull of others, so that means a degeneracy).
+  bool assign(int q, const std::vector<int>& candidates) {
+    for (int f : candidates) {
+      const double h = height(facets_[static_cast<size_t>(f)], q);
+      if (std::abs(h) <= kTrusted) return false;
+      if (h > 0.0) {
+        next_outside_[static_cast<size_t>(q)] = facets_[static_cast<size_t>(f)].outside;
+        facets_[static_cast<size_t>(f)].outside = q;
+        holder_[static_cast<size_t>(q)] = f;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  bool start_simplex() {
+    const Eigen::Index m = p_.cols();
+    auto farthest = [&](auto&& measure) {
+      Eigen::Index best = 0;
+      double best_value = -1.0;
+      for (Eigen::Index i = 0; i < m; ++i) {
+        const double value = measure(p_.col(i));
+        if (value > best_value) best = i, best_value = value;
+      }
+      return std::make_pair(static_cast<int>(best), best_value);
+    };
+    const int a = 0;
+    const int b = farthest([&](const Eigen::Vector3d& x) { return (x - p_.col(a)).squaredNorm(); }).first;
+    const Eigen::Vector3d ab = p_.col(b) - p_.col(a);
+    const auto [c, area] = farthest([&](const Eigen::Vector3d& x) { return ab.cross(x - p_.col(a)).norm(); });
+    const Eigen::Vector3d normal = ab.cross(p_.col(c) - p_.col(a));
+    const auto [d, volume] = farthest([&](const Eigen::Vector3d& x) { return std::abs(normal.dot(x - p_.col(a))); });
+    if (area <= kTrusted || volume <= kTrusted) return false;  // all on one circle
+    // Outward facets of the tetrahedron a b c d.
+    const bool d_above_abc = normal.dot(p_.col(d) - p_.col(a)) > 0.0;
+    const std::array<std::array<int, 3>, 4> faces =
+        d_above_abc ? std::array<std::array<int, 3>, 4>{{{a, c, b}, {a, b, d}, {b, c, d}, {c, a, d}}}
+                    : std::array<std::array<int, 3>, 4>{{{a, b, c}, {a, d, b}, {b, d, c}, {c, d, a}}};
+    for (const auto& f : faces) add_facet(f[0], f[1], f[2]);
+    for (Facet& f : facets_)
+      for (int e = 0; e < 3; ++e)
+        for (int g = 0; g < 4; ++g)
+          for (int k = 0; k < 3; ++k)
+            if (facets_[static_cast<size_t>(g)].v[k] == f.v[(e + 1) % 3] &&
+                facets_[static_cast<size_t>(g)].v[(k + 1) % 3] == f.v[e])
+              f.next[e] = g;
+    simplex_ = {a, b, c, d};
+    const std::vector<int> all = {0, 1, 2, 3};
+    for (int q = 0; q < static_cast<int>(m); ++q)
+      if (q != a && q != b && q != c && q != d && !assign(q, all)) return false;
+    return true;
+  }
+
+  // Every point but the simplex, shuffled by a fixed linear congruential generator: the hull does
+  // not depend on the order, but the expected running time needs it to look random.
+  std::vector<int> insertion_order() const {
+    std::vector<int> order;
+    for (int q = 0; q < static_cast<int>(p_.cols()); ++q)
+      if (std::find(simplex_.begin(), simplex_.end(), q) == simplex_.end()) order.push_back(q);
+    std::uint64_t state = 0x9E3779B97F4A7C15ull;
+    for (size_t i = order.size(); i > 1; --i) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      std::swap(order[i - 1], order[static_cast<size_t>((state >> 33) % i)]);
+    }
+    return order;
+  }
+
+  bool add_point(int q) {
+    ++step_;
+    // The facets q sees form a connected patch around the one holding q.
+    const int first = holder_[static_cast<size_t>(q)];
+    if (first < 0 || !facets_[static_cast<size_t>(first)].alive) return false;
+    std::vector<int>& visible = visible_;
+    visible.assign(1, first);
+    facets_[static_cast<size_t>(first)].stamp = 2 * step_;
+    for (size_t k = 0; k < visible.size(); ++k) {
+      for (int e = 0; e < 3; ++e) {
+        Facet& g = facets_[static_cast<size_t>(facets_[static_cast<size_t>(visible[k])].next[e])];
+        if (g.stamp == 2 * step_ || g.stamp == 2 * step_ + 1) continue;
+        const double h = height(g, q);
+        if (std::abs(h) <= kTrusted) return false;
+        g.stamp = 2 * step_ + (h > 0.0 ? 0 : 1);
+        if (h > 0.0) visible.push_back(facets_[static_cast<size_t>(visible[k])].next[e]);
+      }
+    }
+    // A cone of new facets from q over the horizon.
+    std::vector<int>& cone = cone_;
+    cone.clear();
+    for (int f : visible) {
+      for (int e = 0; e < 3; ++e) {
+        const int g = facets_[static_cast<size_t>(f)].next[e];
+        if (facets_[static_cast<size_t>(g)].stamp != 2 * step_ + 1) continue;
+        const int a = facets_[static_cast<size_t>(f)].v[e], b = facets_[static_cast<size_t>(f)].v[(e + 1) % 3];
+        if (start_at_[static_cast<size_t>(a)] >= 0) return false;  // horizon not a simple loop
+        const int n = add_facet(a, b, q);
+        cone.push_back(n);
+        start_at_[static_cast<size_t>(a)] = n;
+        facets_[static_cast<size_t>(n)].next[0] = g;
+        Facet& outer = facets_[static_cast<size_t>(g)];
+        for (int k = 0; k < 3; ++k)
+          if (outer.v[k] == b && outer.v[(k + 1) % 3] == a) outer.next[k] = n;
+      }
+    }
+    for (int n : cone) {
+      const int b = facets_[static_cast<size_t>(n)].v[1];
+      const int after = start_at_[static_cast<size_t>(b)];
+      if (after < 0) return false;
+      facets_[static_cast<size_t>(n)].next[1] = after;
+      facets_[static_cast<size_t>(after)].next[2] = n;
+    }
+    for (int n : cone) start_at_[static_cast<size_t>(facets_[static_cast<size_t>(n)].v[0])] = -1;
+    // The points waiting on the removed facets move to new facets they see.
+    for (int f : visible) {
+      facets_[static_cast<size_t>(f)].alive = false;
+      for (int r = facets_[static_cast<size_t>(f)].outside, after; r >= 0; r = after) {
+        after = next_outside_[static_cast<size_t>(r)];
+        if (r != q && !assign(r, cone)) return false;
+      }
+    }
+    return true;
+  }
+
+  const Eigen::Matrix3Xd& p_;
+  std::vector<Facet> facets_;
+  std::vector<int> next_outside_;  // per point: the next one in the same outside set
+  std::vector<int> holder_;        // per point: the facet whose outside set holds it
+  std::vector<int> start_at_;  // per vertex: the new cone facet whose horizon edge starts there
+  std::array<int, 4> simplex_{};
+  int step_ = 0;
+  std::vector<int> visible_, cone_;  // scratch for add_point, kept to reuse their memory
+};
+
+// Nearest point of H = { p : n_i·p >= -tau } to d, by enumerating every point that can be it.
+class NearestFeasiblePoint {
+ public:
+  NearestFeasiblePoint(const Eigen::Matrix3Xd& n, const Eigen::Vector3d& d, double tau,
+                       const Eigen::Vector3d& tie, double tie_tolerance)
+      : n_(n), d_(d), tau_(tau), tie_(tie), tie_tolerance_(tie_tolerance) {}
+
+  // False when H is empty.
+  bool solve(Eigen::Vector3d& closest) {
+    if (is_feasible(d_)) {
+      closest = d_;
+      return true;
+    }
+    offer_circle_points();
+    if (n_.cols() < kHullFrom || !offer_hull_crossings()) offer_crossings();
+    if (kept_.empty()) return false;
+    closest = tie_broken_choice();
+    return true;
+  }
+
+ private:
+  struct Kept {
+    Eigen::Vector3d p;
+    double angle;
+  };
+  struct Candidate {
+    Eigen::Vector3d p;
+    double cos_angle;  // d·p
+  };
+
+  // Offers candidates nearest first: past the first feasible one only ties can still matter, so
+  // a heap (O(c) to build, O(log c) per candidate looked at) beats sorting them all.
+  void offer_nearest_first(const std::vector<Candidate>& candidates) {
+    std::vector<std::pair<double, int>> heap(candidates.size());  // (d·p, -index): ties go to the first
+    for (size_t k = 0; k < candidates.size(); ++k) heap[k] = {candidates[k].cos_angle, -static_cast<int>(k)};
+    std::make_heap(heap.begin(), heap.end());
+    while (!heap.empty() && heap.front().first >= screen_) {
+      offer(candidates[static_cast<size_t>(-heap.front().second)].p);
+      std::pop_heap(heap.begin(), heap.end());
+      heap.pop_back();
+    }
+  }
+
+  // n_k·p >= -tau - tolerance for all k; starts with the constraint that failed last time, which
+  // rejects most of the many infeasible candidates at the first test.
+  bool is_feasible(const Eigen::Vector3d& p) {
+    const double bound = -tau_ - kMinRotationFeasibilityTolerance;
+    if (n_.cols() == 0) return true;
+    if (n_.col(last_violated_).dot(p) < bound) return false;
+    for (Eigen::Index k = 0; k < n_.cols(); ++k) {
+      if (n_.col(k).dot(p) < bound) {
+        last_violated_ = k;
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // A unit candidate point: kept when feasible and within tie_tolerance of the best angle so far.
+  void offer(const Eigen::Vector3d& p) {
+    if (d_.dot(p) >= screen_ && is_feasible(p)) keep(p);
+  }
+
+  // A feasible unit point: kept when within tie_tolerance of the best angle so far.
+  void keep(const Eigen::Vector3d& p) {
+    const double angle = std::atan2(p.cross(d_).norm(), d_.dot(p));
+    if (angle > best_angle_ + tie_tolerance_) return;
+    kept_.push_back({p, angle});
+    if (angle < best_angle_) {
+      best_angle_ = angle;
+      const double limit = best_angle_ + tie_tolerance_;
+      kept_.erase(std::remove_if(kept_.begin(), kept_.end(), [&](const Kept& k) { return k.angle > limit; }),
+                  kept_.end());
+      screen_ = std::cos(std::min(limit, M_PI)) - kScreenSlack;
+    }
+  }
+
+  // On each boundary circle n_i·p = -tau (centre -tau n_i, radius sqrt(1 - tau²)) the point
+  // nearest to d. When d is (nearly) on the circle's axis the whole circle is (nearly) equally
+  // near, so its point in the tie-break direction is offered as well.
+  void offer_circle_points() {
+    const double radius = std::sqrt(1.0 - tau_ * tau_);
+    const double whole_circle_ties = std::sin(0.5 * std::min(tie_tolerance_, M_PI));
+    std::vector<Candidate> points;
+    auto add = [&](const Eigen::Vector3d& centre, const Eigen::Vector3d& direction) {
+      const Eigen::Vector3d p = (centre + radius * direction).normalized();
+      points.push_back({p, d_.dot(p)});
+    };
+    for (Eigen::Index i = 0; i < n_.cols(); ++i) {
+      const Eigen::Vector3d ni = n_.col(i);
+      const Eigen::Vector3d centre = -tau_ * ni;
+      const Eigen::Vector3d off_axis = d_ - d_.dot(ni) * ni;
+      const double off_axis_length = off_axis.norm();
+      if (off_axis_length > 0.0) add(centre, off_axis / off_axis_length);
+      if (off_axis_length <= whole_circle_ties) {
+        const Eigen::Vector3d w = tie_ - tie_.dot(ni) * ni;
+        if (w.norm() > 0.5) add(centre, w.normalized());  // tie_ ⟂ d and ni ≈ ±d: |w| ≈ 1
+      }
+    }
+    offer_nearest_first(points);
+  }
+
+  // The crossings of every two boundary circles. With S = n_i + n_j and D = n_j - n_i (S ⟂ D),
+  // the crossings are p = p0 ± h u, p0 = -2 tau S / |S|², u = S × D / |S × D|,
+  // h = sqrt(1 - 4 tau² / |S|²); they exist when |S| >= 2 tau. S × D = 2 n_i × n_j, but keeps
+  // full relative precision for near-duplicate and near-antipodal normals.
+  void offer_crossings() {
+    const Eigen::Index m = n_.cols();
+    // Structure of arrays in one block, so that the screening loop below vectorises. Columns:
+    // n_i (x, y, z), d·n_i, d × n_i (as (d × n_i)·n_j = d·(n_i × n_j)), the screen's verdicts.
+    Eigen::Matrix<double, Eigen::Dynamic, 8> columns(m, 8);
+    columns.leftCols<3>() = n_.transpose();
+    columns.col(3) = n_.transpose() * d_;
+    for (Eigen::Index i = 0; i < m; ++i) columns.row(i).segment<3>(4) = d_.cross(n_.col(i)).transpose();
+    const double *px = &columns(0, 0), *py = &columns(0, 1), *pz = &columns(0, 2), *pa = &columns(0, 3);
+    const double *ex = &columns(0, 4), *ey = &columns(0, 5), *ez = &columns(0, 6);
+    double* out = &columns(0, 7);  // > 0: the pair survives (double, so that it vectorises)
+    const double four_tau2 = 4.0 * tau_ * tau_, two_tau = 2.0 * tau_;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      // Screen without sqrt or division: |S|² d·p± = -2 tau (a_i + a_j) ± 2 t sqrt((|S|² - 4 tau²) / |D|²)
+      // with a = d·n and t = d·(n_i × n_j). A pair survives when its caps touch and its nearer
+      // crossing is not beyond the screen. Branch-free, so that it vectorises.
+      const double xi = px[i], yi = py[i], zi = pz[i], ai = pa[i], exi = ex[i], eyi = ey[i], ezi = ez[i];
+      const double screen = screen_;
+      for (Eigen::Index j = i + 1; j < m; ++j) {
+        const double sx = xi + px[j], sy = yi + py[j], sz = zi + pz[j];
+        const double dx = px[j] - xi, dy = py[j] - yi, dz = pz[j] - zi;
+        const double s2 = sx * sx + sy * sy + sz * sz, d2 = dx * dx + dy * dy + dz * dz;
+        const double t = exi * px[j] + eyi * py[j] + ezi * pz[j];
+        const double L = screen * s2 + two_tau * (ai + pa[j]);
+        const double room = s2 - four_tau2;
+        const double caps_touch = room >= 0.0 ? 1.0 : 0.0;
+        const double near_enough = (L <= 0.0 ? 1.0 : 0.0) + (4.0 * t * t * room > L * L * d2 ? 1.0 : 0.0);
+        out[j] = caps_touch * near_enough;
+      }
+      for (Eigen::Index j = i + 1; j < m; ++j)
+        if (out[j] > 0.0) offer_crossing_pair(n_.col(i), n_.col(j));
+    }
+  }
+
+  // The crossings p0 ± hu of circles i and j (see offer_crossings); false when there are none
+  // or infinitely many (identical or antipodal circles), h = 0 when they touch.
+  bool crossing_frame(const Eigen::Vector3d& ni, const Eigen::Vector3d& nj, Eigen::Vector3d& p0,
+                      Eigen::Vector3d& hu, double& h) const {
+    const Eigen::Vector3d S = ni + nj, D = nj - ni, c = S.cross(D);
+    const double s2 = S.squaredNorm();
+    if (s2 < 4.0 * tau_ * tau_) return false;
+    // Not sqrt(|S|² |D|²): for normals a few ulps apart S·D is as large as |D| and |S × D| < |S| |D|.
+    const double c_length = c.norm();
+    if (c_length == 0.0) return false;
+    const double inverse_s2 = 1.0 / s2;
+    p0 = (-2.0 * tau_ * inverse_s2) * S;
+    h = std::sqrt(std::max(0.0, 1.0 - 4.0 * tau_ * tau_ * inverse_s2));
+    hu = (h / c_length) * c;
+    return true;
+  }
+
+  void offer_crossing_pair(const Eigen::Vector3d& ni, const Eigen::Vector3d& nj) {
+    Eigen::Vector3d p0, hu;
+    double h;
+    if (!crossing_frame(ni, nj, p0, hu, h)) return;
+    // Both crossings against the screen, then against every constraint in one sweep.
+    const double p0_d = p0.dot(d_), hu_d = hu.dot(d_);
+    bool plus = p0_d + hu_d >= screen_, minus = p0_d - hu_d >= screen_ && h > 0.0;
+    if (!plus && !minus) return;
+    const double bound = -tau_ - kMinRotationFeasibilityTolerance;
+    auto test = [&](Eigen::Index k) {
+      const double centre = n_.col(k).dot(p0), offset = n_.col(k).dot(hu);
+      plus = plus && centre + offset >= bound;
+      minus = minus && centre - offset >= bound;
+      return plus || minus;
+    };
+    if (!test(last_violated_)) return;
+    for (Eigen::Index k = 0; k < n_.cols(); ++k) {
+      if (!test(k)) {
+        last_violated_ = k;
+        return;
+      }
+    }
+    if (plus) keep((p0 + hu).normalized());
+    if (minus) keep((p0 - hu).normalized());
+  }
+
+  // With many normals only the crossings of hull edges (see SphereHullEdges).
+  // False when the hull cannot be trusted; nothing has been offered then.
+  bool offer_hull_crossings() {
+    // Exact duplicates are one constraint, and would make the hull degenerate.
+    std::vector<std::array<double, 3>> sorted(static_cast<size_t>(n_.cols()));
+    for (Eigen::Index i = 0; i < n_.cols(); ++i) sorted[static_cast<size_t>(i)] = {n_(0, i), n_(1, i), n_(2, i)};
+    std::sort(sorted.begin(), sorted.end());
+    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+    if (sorted.size() < 4) return false;
+    const Eigen::Matrix3Xd distinct =
+        Eigen::Map<const Eigen::Matrix3Xd>(sorted.front().data(), 3, static_cast<Eigen::Index>(sorted.size()));
+
+    std::vector<SphereHullEdges::Edge> edges;
+    if (!SphereHullEdges(distinct).build(edges)) return false;
+    // A crossing of edge (i, j) is feasible exactly when it lies on the Voronoi edge of i and j,
+    // that is when the two neighbours k and l across the edge leave it alone: an O(1) test that
+    // rejects nearly every candidate before the full check.
+    const double bound = -tau_ - kMinRotationFeasibilityTolerance;
+    for (const auto& e : edges) {
+      Eigen::Vector3d p0, hu;
+      double h;
+      if (!crossing_frame(distinct.col(e.i), distinct.col(e.j), p0, hu, h)) continue;
+      for (const Eigen::Vector3d& p : {Eigen::Vector3d(p0 + hu), Eigen::Vector3d(p0 - hu)}) {
+        if (d_.dot(p) >= screen_ && distinct.col(e.k).dot(p) >= bound && distinct.col(e.l).dot(p) >= bound)
+          offer(p);
+        if (h == 0.0) break;  // touching circles: one point
+      }
+    }
+    return true;
+  }
+
+  // Among the kept points within tie_tolerance of the minimal angle: the one whose tangent at d
+  // best matches the tie-break direction; then the smaller angle; then the first found.
+  Eigen::Vector3d tie_broken_choice() const {
+    const double limit = best_angle_ + tie_tolerance_;
+    const Kept* choice = nullptr;
+    double choice_alignment = 0.0;
+    for (const Kept& k : kept_) {
+      if (k.angle > limit) continue;
+      const Eigen::Vector3d tangent = k.p - k.p.dot(d_) * d_;
+      const double length = tangent.norm();
+      const double alignment = length > kTinyTangent ? tangent.dot(tie_) / length : -2.0;
+      if (!choice || alignment > choice_alignment ||
+          (alignment == choice_alignment && k.angle < choice->angle)) {
+        choice = &k;
+        choice_alignment = alignment;
+      }
+    }
+    return choice->p;
+  }
+
+  const Eigen::Matrix3Xd& n_;
+  const Eigen::Vector3d d_;
+  const double tau_;
+  const Eigen::Vector3d tie_;
+  const double tie_tolerance_;
+  Eigen::Index last_violated_ = 0;
+  std::vector<Kept> kept_;
+  double best_angle_ = M_PI + 1.0;  // no feasible point yet
+  double screen_ = -2.0;            // below every cos(angle): screens nothing yet
+};
+
+}  // namespace
+
+void check_face_normals(const Eigen::Matrix3Xd& normals, const char* caller) {
+  for (Eigen::Index i = 0; i < normals.cols(); ++i) {
+    const double length = normals.col(i).norm();
+    if (!std::isfinite(length))
+      throw std::invalid_argument(std::string(caller) + ": normal " + std::to_string(i) + " is not finite");
+    if (length != 0.0 && std::abs(length - 1.0) > kUnitTolerance)
+      throw std::invalid_argument(std::string(caller) + ": normal " + std::to_string(i) + " has length " +
+                                  std::to_string(length) +
+                                  "; expected a unit vector (or exactly zero for a zero-area face)");
+  }
+}
+
+GreatCircleRotation rotation_onto(const Eigen::Vector3d& c, const Eigen::Vector3d& d,
+                                  const Eigen::Vector3d& tangent) {
+  // Work in the plane of d and the unit tangent t at d pointing towards c: c = cos(a) d + sin(a) t,
+  // and R maps d -> cos(a) d - sin(a) t, t -> sin(a) d + cos(a) t, fixing t × d. Built from t
+  // rather than from c × d, R c = d holds to rounding even when c is close to -d.
+  const double along = c.dot(d);
+  const Eigen::Vector3d off = c - along * d;
+  const double off_length = off.norm();
+  const Eigen::Vector3d t = off_length > kTinyTangent ? Eigen::Vector3d(off / off_length) : tangent;
+  GreatCircleRotation g;
+  if (off_length <= kTinyTangent && along > 0.0) {  // c is d, to rounding: exactly no rotation
+    g.angle = 0.0;
+    g.rotation.setIdentity();
+    g.axis = tangent.cross(d).normalized();
+    return g;
+  }
+  g.angle = std::atan2(off_length, along);
+  const double cos_a = std::cos(g.angle), sin_a = std::sin(g.angle);
+  g.rotation = Eigen::Matrix3d::Identity() + (cos_a - 1.0) * (d * d.transpose() + t * t.transpose()) +
+               sin_a * (d * t.transpose() - t * d.transpose());
+  g.axis = t.cross(d).normalized();
+  return g;
+}
+
+MinRotation min_rotation(const Eigen::Matrix3Xd& normals, const Eigen::Vector3d& d, double tau) {
+  return min_rotation(normals, d, tau, MinRotationOptions{});
+}
+
+MinRotation min_rotation(const Eigen::Matrix3Xd& normals, const Eigen::Vector3d& d_in, double tau,
+                         const MinRotationOptions& options) {
+  check_inputs(normals, d_in, tau, options);
+  const Eigen::Vector3d d = d_in.normalized();
+  const Eigen::Vector3d tie = tie_direction(d, options.tie_break);
+  const Eigen::Matrix3Xd unit_normals = nonzero_unit_columns(normals);
+
+  MinRotation result;
+  Eigen::Vector3d closest;
+  NearestFeasiblePoint solver(unit_normals, d, tau, tie, options.tie_tolerance);
+  result.feasible = solver.solve(closest);
+  if (!result.feasible) closest = d;  // nothing to rotate towards: stay put
+  const GreatCircleRotation g = rotation_onto(closest, d, tie);
+  result.closest = closest;
+  result.angle = g.angle;
+  result.axis = g.axis;
+  result.rotation = g.rotation;
+  return result;
+}
+
+}  // namespace slim

@@ -1,0 +1,456 @@
+#include "core/slimming.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/arap.h"
+#include "core/embedding.h"
+#include "core/polar.h"
+#include "core/proxy_rotation.h"
+#include "core/tetgen_domain.h"
+#include "core/voxel_domain.h"
+
+// Choices the paper leaves open (documented in slimming.h and README):
+//  * Which faces constrain a tet: every non-plate face piece in it (the paper's P), not only the
+//    risky ones, so a rotation that fixes one face never breaks a safe neighbour.
+//  * Margin: the local step solves for alpha_max - margin and every measurement uses alpha_max.
+//  * Step cap: each tet's extra rotation is at most max_step_deg per iteration, so the global
+//    step is never asked for a jump it can only half follow.
+//  * Straight-down faces: the tie between equally near rotations is broken towards the horizontal
+//    direction from the part's vertical axis to the tet, so the two arms of a T or the rim of a
+//    mushroom cap all bend up and outwards together (paper Fig. 8 is what happens otherwise).
+//  * Output: the best iterate (least risky area) within the deviation budget.
+//
+// What SlimmingMethod::Coherent adds to the paper (each measured, see README):
+//  * interior_weight: tets holding no surface face get this share of their volume weight, so the
+//    surface leads and the interior follows instead of holding it back;
+//  * rotation smoothing: each risky tet's extra rotation is blended with those of its
+//    face-neighbouring risky tets (area-weighted quaternion average), so neighbours turn together;
+//  * propagation: safe tets next to risky ones take a share of their neighbours' extra rotation,
+//    so a region turns as a body rather than as a skin.
+
+namespace slim {
+namespace {
+
+struct CoherentSettings {
+  double interior_weight = 0.2;
+  double smoothing = 0.5;     // share of the neighbours' average in a risky tet's extra rotation
+  double propagation = 0.5;   // share of the neighbours' extra rotation a safe tet takes
+};
+
+constexpr double kFeatureWeight = 50.0;  // rigid-feature tets dominate the global step
+
+void validate(const Surface& input, const SlimmingOptions& o) {
+  if (input.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: Support Slimming needs a triangle mesh");
+  check_surface(input);
+  if (o.max_iterations < 0) throw std::invalid_argument("the iteration limit must be 0 or more");
+  if (o.resolution < 1) throw std::invalid_argument("the voxel resolution must be at least 1 cell");
+  if (o.max_k < 1) throw std::invalid_argument("the largest number of K-means proxies must be at least 1");
+  if (!(o.margin_deg >= 0.0 && o.margin_deg < 45.0)) throw std::invalid_argument("the angular margin must be in [0, 45) degrees");
+  if (!(o.max_step_deg > 0.0 && o.max_step_deg <= 180.0)) throw std::invalid_argument("the rotation step cap must be in (0, 180] degrees");
+  if (!std::isfinite(o.max_deviation_pct)) throw std::invalid_argument("the deviation budget must be a finite percentage");
+  if (!o.rigid_features.empty() && o.rigid_features.size() != static_cast<size_t>(input.F.rows()))
+    throw std::invalid_argument("the rigid-feature marks must have one entry per face");
+}
+
+// Face-adjacent tets (sharing a triangle), as lists; deterministic order.
+std::vector<std::vector<int>> tet_neighbours(const Tets& T) {
+  std::map<std::array<int, 3>, int> first;
+  std::vector<std::vector<int>> adj(static_cast<size_t>(T.rows()));
+  for (int t = 0; t < T.rows(); ++t)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<int, 3> key{};
+      for (int k = 0, j = 0; k < 4; ++k)
+        if (k != skip) key[static_cast<size_t>(j++)] = T(t, k);
+      std::sort(key.begin(), key.end());
+      auto [it, inserted] = first.emplace(key, t);
+      if (!inserted) {
+        adj[static_cast<size_t>(t)].push_back(it->second);
+        adj[static_cast<size_t>(it->second)].push_back(t);
+      }
+    }
+  for (auto& a : adj) std::sort(a.begin(), a.end());
+  return adj;
+}
+
+// Connected components of the marked faces over shared vertices; -1 for unmarked faces.
+std::vector<int> feature_components(const Surface& s, const std::vector<bool>& marked, int& count) {
+  std::vector<int> parent(static_cast<size_t>(s.V.rows()));
+  for (size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  auto find = [&](int x) {
+    while (parent[static_cast<size_t>(x)] != x) x = parent[static_cast<size_t>(x)] = parent[static_cast<size_t>(parent[static_cast<size_t>(x)])];
+    return x;
+  };
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f)
+    if (marked[static_cast<size_t>(f)])
+      for (int k = 1; k < 3; ++k) parent[static_cast<size_t>(find(s.F(f, k)))] = find(s.F(f, 0));
+  std::vector<int> label(static_cast<size_t>(s.V.rows()), -1), face_feature(static_cast<size_t>(s.F.rows()), -1);
+  count = 0;
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
+    if (!marked[static_cast<size_t>(f)]) continue;
+    int& l = label[static_cast<size_t>(find(s.F(f, 0)))];
+    if (l < 0) l = count++;
+    face_feature[static_cast<size_t>(f)] = l;
+  }
+  return face_feature;
+}
+
+// Quaternion average (sign-aligned, weighted) of rotations; deterministic.
+Eigen::Matrix3d average_rotation(const std::vector<std::pair<double, Eigen::Quaterniond>>& items) {
+  Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+  const Eigen::Vector4d ref = items.front().second.coeffs();
+  for (const auto& [w, q] : items) {
+    const Eigen::Vector4d c = q.coeffs();
+    sum += (c.dot(ref) < 0 ? -w : w) * c;
+  }
+  if (sum.norm() < 1e-300) return Eigen::Matrix3d::Identity();
+  Eigen::Quaterniond q;
+  q.coeffs() = sum.normalized();
+  return q.toRotationMatrix();
+}
+
+// Runs body(t) for t in [0, n) in parallel; the exception of the lowest t is rethrown after the
+// loop, so nothing escapes the OpenMP region and the reported error does not depend on threads.
+template <class Body>
+void parallel_for(int n, Body&& body) {
+  std::vector<std::exception_ptr> errors(static_cast<size_t>(n));
+  bool any = false;
+#pragma omp parallel for schedule(static) reduction(|| : any)
+  for (int t = 0; t < n; ++t) {
+    try {
+      body(t);
+    } catch (...) {
+      errors[static_cast<size_t>(t)] = std::current_exception();
+      any = true;
+    }
+  }
+  if (any)
+    for (auto& e : errors)
+      if (e) std::rethrow_exception(e);
+}
+
+class ThreadScope {
+ public:
+  explicit ThreadScope(int threads) {
+#ifdef _OPENMP
+    previous_ = omp_get_max_threads();
+    if (threads > 0) omp_set_num_threads(threads);
+#else
+    (void)threads;
+#endif
+  }
+  ~ThreadScope() {
+#ifdef _OPENMP
+    omp_set_num_threads(previous_);
+#endif
+  }
+
+ private:
+  int previous_ = 1;
+};
+
+}  // namespace
+
+SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  validate(input, o);
+  ThreadScope threads(o.threads);
+  const Eigen::Vector3d d = unit_print_direction(o.print_direction);
+  const double tau_solve = std::sin(std::max(0.0, o.alpha_max_deg - o.margin_deg) * M_PI / 180.0);
+  const double diag = (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm();
+  if (!(diag > 0.0)) throw std::invalid_argument("the mesh has zero extent");
+  OverhangOptions measure;
+  measure.print_direction = d;
+  measure.alpha_max_deg = o.alpha_max_deg;
+  measure.plate_tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * diag;
+  const bool coherent = o.method == SlimmingMethod::Coherent;
+  const CoherentSettings cs;
+  auto report = [&](double fraction, const std::string& message) {
+    if (o.progress && !o.progress(fraction, message)) throw Cancelled();
+  };
+
+  SlimmingResult r;
+  r.before = analyse_overhang(input, measure);
+  r.surface = input;
+  r.displacement = Eigen::VectorXd::Zero(input.V.rows());
+  r.volume_before = r.volume_after = signed_volume(input);
+  IterationStats s0;
+  s0.risky_area = r.before.risky_area;
+  s0.risky_share = r.before.risky_share();
+  s0.risky_deficit = r.before.risky_deficit;
+  r.history.push_back(s0);
+  r.after = r.before;
+  auto finish = [&](const std::string& why) {
+    r.stop_reason = why;
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report(1.0, "done: " + why);
+    return r;
+  };
+
+  // ---- the domain and the embedding -------------------------------------------------------------
+  report(0.0, "building the domain");
+  TetMesh domain;
+  Eigen::Array<bool, Eigen::Dynamic, 1> on_plate;
+  Embedding emb;
+  if (o.domain == DomainKind::Voxel) {
+    VoxelDomainOptions vo;
+    vo.resolution = o.resolution;
+    VoxelDomain vd = voxel_domain(input, d, vo);
+    emb = embed_surface(input, vd);
+    domain = std::move(vd.mesh);
+    on_plate = std::move(vd.on_plate);
+  } else {
+    TetgenDomain td = tetgen_domain(input, d);
+    emb = embed_surface(input, td.mesh);
+    domain = std::move(td.mesh);
+    on_plate = std::move(td.on_plate);
+  }
+  r.domain_vertices = static_cast<int>(domain.V.rows());
+  r.domain_tets = static_cast<int>(domain.T.rows());
+  if (o.max_iterations == 0) {
+    // Embed and write back only: the surface rebuilt from the undeformed domain.
+    embedded_positions(emb, domain.V, r.surface.V);
+    r.displacement = (r.surface.V - input.V).rowwise().norm();
+    r.after = analyse_overhang(r.surface, measure);
+    r.volume_after = signed_volume(r.surface);
+    return finish("iteration limit 0: embedded and written back");
+  }
+  if (r.before.risky_count == 0) return finish("no risky faces: nothing to do");
+
+  const int nt = static_cast<int>(domain.T.rows());
+  const Points n0 = face_normals(input);
+  std::vector<Eigen::Matrix3d> rest_inverse(static_cast<size_t>(nt));
+  for (int t = 0; t < nt; ++t) rest_inverse[static_cast<size_t>(t)] = edge_matrix(domain.V, domain.T.row(t)).inverse();
+
+  // The constraint faces of each tet: its face pieces, less plate faces and zero-area pieces.
+  std::vector<std::vector<std::pair<int, double>>> pieces(static_cast<size_t>(nt));
+  for (int t = 0; t < nt; ++t)
+    for (int p = emb.tet_face_offsets(t); p < emb.tet_face_offsets(t + 1); ++p) {
+      const int f = emb.tet_faces(p);
+      if (r.before.on_plate[static_cast<size_t>(f)] || emb.tet_face_areas(p) <= 0.0 || n0.row(f).squaredNorm() == 0.0) continue;
+      pieces[static_cast<size_t>(t)].emplace_back(f, emb.tet_face_areas(p));
+    }
+
+  // Tie-break direction per tet: horizontal, from the part's vertical axis out to the tet.
+  const Eigen::Vector3d centre = input.V.colwise().mean().transpose();
+  std::vector<Eigen::Vector3d> outward(static_cast<size_t>(nt));
+  for (int t = 0; t < nt; ++t) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) c += domain.V.row(domain.T(t, k)).transpose() / 4.0;
+    const Eigen::Vector3d h = (c - centre) - (c - centre).dot(d) * d;
+    outward[static_cast<size_t>(t)] = h.norm() > 1e-9 * diag ? h.normalized() : Eigen::Vector3d::UnitX();
+  }
+
+  // Rigid features (§IV-B): the tets holding a feature's faces share one transformation.
+  int feature_count = 0;
+  std::vector<int> tet_feature(static_cast<size_t>(nt), -1);
+  if (!o.rigid_features.empty()) {
+    const std::vector<int> face_feature = feature_components(input, o.rigid_features, feature_count);
+    for (int t = 0; t < nt; ++t)
+      for (int p = emb.tet_face_offsets(t); p < emb.tet_face_offsets(t + 1); ++p)
+        if (face_feature[static_cast<size_t>(emb.tet_faces(p))] >= 0 && tet_feature[static_cast<size_t>(t)] < 0)
+          tet_feature[static_cast<size_t>(t)] = face_feature[static_cast<size_t>(emb.tet_faces(p))];
+  }
+
+  // ---- the global step's matrix: factored once ----------------------------------------------------
+  report(0.05, "factoring the global step");
+  Eigen::VectorXd weights(nt);
+  for (int t = 0; t < nt; ++t) {
+    weights(t) = tet_volume(domain.V, domain.T.row(t));
+    if (coherent && pieces[static_cast<size_t>(t)].empty()) weights(t) *= cs.interior_weight;
+    if (tet_feature[static_cast<size_t>(t)] >= 0) weights(t) *= kFeatureWeight;
+  }
+  std::vector<int> pinned;
+  for (Eigen::Index v = 0; v < on_plate.size(); ++v)
+    if (on_plate(v)) pinned.push_back(static_cast<int>(v));
+  ArapOptions ao;
+  ao.anchor_floating_components = true;  // a part that does not touch the plate stays where it is
+  const ArapSolver arap(domain, weights, pinned, ao);
+  r.solver_backend = arap.backend_name();
+  const std::vector<std::vector<int>> neighbours = coherent ? tet_neighbours(domain.T) : std::vector<std::vector<int>>{};
+
+  // ---- the iterations -------------------------------------------------------------------------------
+  Points V = domain.V;
+  Points surface_V = input.V;
+  double best_risky = r.before.risky_area;
+  std::vector<Eigen::Matrix3d> L(static_cast<size_t>(nt)), M(static_cast<size_t>(nt)), extra(static_cast<size_t>(nt));
+  std::vector<double> ae_area(static_cast<size_t>(nt)), risky_weight(static_cast<size_t>(nt));
+  const double max_step = o.max_step_deg * M_PI / 180.0;
+  const double budget = o.max_deviation_pct > 0.0 ? o.max_deviation_pct / 100.0 * diag : HUGE_VAL;
+  ProxyOptions po;
+  po.max_k = o.max_k;
+  const double plate = (domain.V * d).minCoeff();
+  std::string why = "iteration limit reached";
+
+  for (int it = 1; it <= o.max_iterations; ++it) {
+    // Local step: M_t from the current shape, R_t from the rest normals turned by M_t.
+    parallel_for(nt, [&](int t) {
+      const size_t ts = static_cast<size_t>(t);
+      M[ts] = closest_rotation(edge_matrix(V, domain.T.row(t)) * rest_inverse[ts]);
+      extra[ts].setIdentity();
+      ae_area[ts] = risky_weight[ts] = 0.0;
+      const auto& pc = pieces[ts];
+      if (pc.empty() || tet_feature[ts] >= 0) return;
+      Eigen::Matrix3Xd normals(3, static_cast<Eigen::Index>(pc.size()));
+      Eigen::VectorXd areas(static_cast<Eigen::Index>(pc.size()));
+      bool risky = false;
+      for (size_t i = 0; i < pc.size(); ++i) {
+        normals.col(static_cast<Eigen::Index>(i)) = M[ts] * n0.row(pc[i].first).transpose();
+        areas(static_cast<Eigen::Index>(i)) = pc[i].second;
+        const double q = normals.col(static_cast<Eigen::Index>(i)).dot(d) + tau_solve;
+        if (q < 0) {
+          risky = true;
+          risky_weight[ts] += pc[i].second;
+        }
+      }
+      if (!risky) return;
+      MinRotationOptions mo;
+      mo.tie_break = outward[ts];
+      const ProxyRotation pr = proxy_rotation(normals, areas, d, tau_solve, mo, po);
+      ae_area[ts] = pr.approximation_error * areas.sum();
+      if (pr.undefined || !pr.solution.feasible) return;
+      const double angle = std::min(pr.solution.angle, max_step);
+      extra[ts] = Eigen::AngleAxisd(angle, pr.solution.axis).toRotationMatrix();
+    });
+
+    // Coherent: neighbours turn together, and safe tets next to risky ones follow.
+    if (coherent) {
+      std::vector<Eigen::Matrix3d> blended = extra;
+      parallel_for(nt, [&](int t) {
+        const size_t ts = static_cast<size_t>(t);
+        if (tet_feature[ts] >= 0) return;
+        std::vector<std::pair<double, Eigen::Quaterniond>> items;
+        double neighbour_weight = 0.0;
+        for (int u : neighbours[ts])
+          if (risky_weight[static_cast<size_t>(u)] > 0.0 && tet_feature[static_cast<size_t>(u)] < 0) {
+            items.emplace_back(risky_weight[static_cast<size_t>(u)], Eigen::Quaterniond(extra[static_cast<size_t>(u)]));
+            neighbour_weight += risky_weight[static_cast<size_t>(u)];
+          }
+        if (items.empty()) return;
+        const double share = risky_weight[ts] > 0.0 ? cs.smoothing : cs.propagation;
+        const Eigen::Quaterniond mean(average_rotation(items));
+        const Eigen::Quaterniond own(extra[ts]);
+        blended[ts] = own.slerp(share, mean).toRotationMatrix();
+      });
+      extra.swap(blended);
+    }
+    for (int t = 0; t < nt; ++t) L[static_cast<size_t>(t)] = extra[static_cast<size_t>(t)] * M[static_cast<size_t>(t)];
+
+    // Rigid features: one rotation from all of the feature's faces, one shared L.
+    for (int f = 0; f < feature_count; ++f) {
+      Eigen::Matrix3d Qsum = Eigen::Matrix3d::Zero();
+      std::vector<int> tets;
+      for (int t = 0; t < nt; ++t)
+        if (tet_feature[static_cast<size_t>(t)] == f) {
+          tets.push_back(t);
+          Qsum += weights(t) * (edge_matrix(V, domain.T.row(t)) * rest_inverse[static_cast<size_t>(t)]);
+        }
+      const Eigen::Matrix3d Mf = closest_rotation(Qsum);
+      std::vector<Eigen::Vector3d> ns;
+      std::vector<double> as;
+      for (int t : tets)
+        for (const auto& [face, area] : pieces[static_cast<size_t>(t)]) {
+          ns.push_back(Mf * n0.row(face).transpose());
+          as.push_back(area);
+        }
+      Eigen::Matrix3d Rf = Eigen::Matrix3d::Identity();
+      if (!ns.empty()) {
+        Eigen::Matrix3Xd normals(3, static_cast<Eigen::Index>(ns.size()));
+        Eigen::VectorXd areas(static_cast<Eigen::Index>(as.size()));
+        for (size_t i = 0; i < ns.size(); ++i) {
+          normals.col(static_cast<Eigen::Index>(i)) = ns[i];
+          areas(static_cast<Eigen::Index>(i)) = as[i];
+        }
+        const ProxyRotation pr = proxy_rotation(normals, areas, d, tau_solve, {}, po);
+        if (!pr.undefined && pr.solution.feasible)
+          Rf = Eigen::AngleAxisd(std::min(pr.solution.angle, max_step), pr.solution.axis).toRotationMatrix();
+      }
+      for (int t : tets) L[static_cast<size_t>(t)] = Rf * Mf;
+    }
+
+    // Global step, then keep everything on or above the plate.
+    Points Vnew = arap.solve(L, domain.V);
+    for (Eigen::Index v = 0; v < Vnew.rows(); ++v) {
+      const double below = plate - Vnew.row(v).dot(d.transpose());
+      if (below > 0.0) Vnew.row(v) += below * d.transpose();
+    }
+    Points surface_new;
+    embedded_positions(emb, Vnew, surface_new);
+    Eigen::VectorXd disp = (surface_new - input.V).rowwise().norm();
+    bool budget_reached = false;
+    if (disp.maxCoeff() > budget) {
+      // Roll the step back, then keep the largest fraction of it that fits the budget (surface
+      // positions are linear in the step, so bisection on the fraction is exact enough).
+      budget_reached = true;
+      const Points step = Vnew - V;
+      double lo = 0.0, hi = 1.0;
+      for (int b = 0; b < 30; ++b) {
+        const double mid = 0.5 * (lo + hi);
+        embedded_positions(emb, V + mid * step, surface_new);
+        ((surface_new - input.V).rowwise().norm().maxCoeff() <= budget ? lo : hi) = mid;
+      }
+      if (lo < 1e-3) {
+        why = "deviation budget reached (iteration " + std::to_string(it) + " undone)";
+        break;
+      }
+      Vnew = V + lo * step;
+      embedded_positions(emb, Vnew, surface_new);
+      disp = (surface_new - input.V).rowwise().norm();
+      why = "deviation budget reached (iteration " + std::to_string(it) + " cut to " +
+            std::to_string(static_cast<int>(100 * lo)) + "% of its step)";
+    }
+
+    Surface deformed{surface_new, input.F};
+    IterationStats st;
+    st.iteration = it;
+    const OverhangReport now = analyse_overhang(deformed, measure);
+    st.risky_area = now.risky_area;
+    st.risky_share = now.risky_share();
+    st.risky_deficit = now.risky_deficit;
+    st.energy = arap.energy(Vnew, L);
+    double ae = 0.0, piece_area = 0.0;
+    for (int t = 0; t < nt; ++t) {
+      ae += ae_area[static_cast<size_t>(t)];
+      for (const auto& pc : pieces[static_cast<size_t>(t)]) piece_area += pc.second;
+      if (risky_weight[static_cast<size_t>(t)] > 0.0) ++st.risky_tets;
+      if (edge_matrix(Vnew, domain.T.row(t)).determinant() <= 0.0) ++st.inverted_tets;
+    }
+    st.approximation_error = piece_area > 0.0 ? ae / piece_area : 0.0;
+    st.max_displacement = disp.maxCoeff();
+    st.mean_displacement = disp.mean();
+    r.history.push_back(st);
+    const double previous_deficit = r.history[r.history.size() - 2].risky_deficit;
+
+    V = Vnew;
+    surface_V = surface_new;
+    if (st.risky_area <= best_risky) {
+      best_risky = st.risky_area;
+      r.surface.V = surface_new;
+      r.after = now;
+      r.displacement = disp;
+      r.iterations = it;
+    }
+    report(0.1 + 0.9 * it / o.max_iterations, "iteration " + std::to_string(it) + ": risky area " + std::to_string(st.risky_area));
+    if (budget_reached) break;
+    if (previous_deficit - st.risky_deficit < o.stall_tolerance * r.before.risky_deficit) {
+      why = "overhangs stopped improving";
+      break;
+    }
+  }
+  // The result is the best iterate; its statistics close the history.
+  r.history.resize(static_cast<size_t>(r.iterations) + 1);
+  r.volume_after = signed_volume(r.surface);
+  return finish(why);
+}
+
+}  // namespace slim

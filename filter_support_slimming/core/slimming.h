@@ -1,0 +1,104 @@
+// Support slimming: the paper's local/global shape optimizer (§II–IV), end to end.
+//
+// In:  a Surface (#V by 3 positions in mm, #F by 3 outward-oriented triangles) and options.
+// Out: the deformed Surface (same #V, same F: the topology never changes), in the input's frame,
+//      with per-iteration statistics and the overhang report of the result.
+//
+// Each iteration:
+//   local step   for every tet t:  M_t = polar(V_t^cur (V_t^0)^-1)  (nearest rotation, det +1).
+//                A tet holding risky faces turns their rest normals by M_t, asks min_rotation for
+//                the smallest R_t that makes them all self-supporting (K-means proxies when no
+//                exact answer exists) and sets L_t = R_t M_t; every other tet keeps L_t = M_t.
+//   global step  V = argmin sum_t w_t ||V_t - L_t V_t^0||_F^2 with the plate vertices held
+//                (arap.h: factored once, back-substituted every iteration).
+// The surface follows the domain through fixed barycentric coordinates (embedding.h).
+//
+// Stopping: the first of  max_iterations;  the overhang deficit (overhang.h: risky area weighted
+// by how far each face is from safe) no longer falling by stall_tolerance of its initial value;
+// the deviation budget (the largest vertex displacement, % of the bbox diagonal: the step that
+// overshoots it is rolled back and replaced by the largest fraction of it that fits);  cancel.
+// The result is the iterate with the least risky area (the later one on ties).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/overhang.h"
+#include "core/surface.h"
+
+namespace slim {
+
+enum class SlimmingMethod {
+  Paper,    // the paper as written: per-tet minimal rotations, volume weights
+  Coherent  // the default: see slimming.cpp for what it adds, each part an option below
+};
+
+enum class DomainKind { Voxel, TetGen };
+
+struct SlimmingOptions {
+  // --- the print -------------------------------------------------------------------------------
+  Eigen::Vector3d print_direction = Eigen::Vector3d::UnitZ();  // any non-zero vector
+  double alpha_max_deg = 45.0;       // self-supporting angle from the vertical, [0, 90)
+  double plate_tolerance = -1.0;     // mm; < 0 means 1e-3 of the bbox diagonal
+  // --- the domain ------------------------------------------------------------------------------
+  DomainKind domain = DomainKind::Voxel;
+  int resolution = 24;               // voxel cells along the longest side of the bbox
+  // --- the optimizer ---------------------------------------------------------------------------
+  SlimmingMethod method = SlimmingMethod::Coherent;
+  int max_iterations = 40;           // 0: embed and write back only
+  double max_deviation_pct = 5.0;    // deviation budget, % of the bbox diagonal (<= 0: none)
+  double stall_tolerance = 1e-3;     // stop when an iteration removes less than this share of the
+                                     // initial overhang deficit
+  double margin_deg = 1.0;           // solve for alpha_max - margin, measure at alpha_max
+  double max_step_deg = 10.0;        // cap on each tet's extra rotation per iteration
+  int max_k = 8;                     // K-means proxies: the largest k tried
+  // --- feature preservation (§IV-B) -------------------------------------------------------------
+  // Per input face: true = part of a rigid feature. Each connected component of the marked faces
+  // is one feature that moves as a single rigid body. Empty: no features.
+  std::vector<bool> rigid_features;
+  // --- running -----------------------------------------------------------------------------------
+  int threads = 0;                   // OpenMP threads; 0: the runtime's default. Results do not
+                                     // depend on it.
+  // Called after setup and after every iteration with a fraction in [0, 1] and a short message.
+  // Returning false cancels: the run throws slim::Cancelled and no result is produced.
+  std::function<bool(double, const std::string&)> progress;
+};
+
+struct IterationStats {
+  int iteration = 0;               // 0 is the input
+  double risky_area = 0.0;         // mm²
+  double risky_share = 0.0;        // of the total area
+  double risky_deficit = 0.0;      // mm², see OverhangReport::risky_deficit
+  double energy = 0.0;             // the ARAP energy of this iteration's global step
+  double approximation_error = 0.0;  // AE: area share poorly represented by its proxy (§IV-C)
+  double max_displacement = 0.0;   // mm, over surface vertices
+  double mean_displacement = 0.0;  // mm
+  int inverted_tets = 0;
+  int risky_tets = 0;
+};
+
+struct SlimmingResult {
+  Surface surface;                    // the deformed mesh, same topology as the input
+  OverhangReport before, after;       // measured at alpha_max
+  std::vector<IterationStats> history;  // history[0] is the input, one entry per kept iteration
+  int iterations = 0;                 // iterations kept (a rolled-back one is not counted)
+  std::string stop_reason;
+  Eigen::VectorXd displacement;       // #V, mm
+  double volume_before = 0.0, volume_after = 0.0;  // signed enclosed volume, mm³
+  int domain_vertices = 0, domain_tets = 0;
+  std::string solver_backend;
+  double seconds = 0.0;
+};
+
+struct Cancelled : std::exception {
+  const char* what() const noexcept override { return "cancelled by the user"; }
+};
+
+// Throws std::invalid_argument for bad input or options (with the reason and what to change),
+// Cancelled when progress returns false, std::runtime_error for a numerical failure.
+SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& options = {});
+
+}  // namespace slim

@@ -1,0 +1,165 @@
+// Invariants of the local/global optimizer: less risky area, nothing inverted, the base stays on
+// the plate, the budget holds, rigid features stay rigid, and results repeat whatever the threads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/slimming.h"
+#include "support/shapes.h"
+
+using namespace slim;
+
+namespace {
+const Surface& bunny() {
+  static const Surface s = test::load_mesh(test::sample_bunny_path());
+  return s;
+}
+double diag(const Surface& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
+}  // namespace
+
+TEST(Slimming, BunnyLosesRiskyAreaWithoutInversionInsideTheBudget) {
+  SlimmingOptions o;
+  o.max_deviation_pct = 5.0;
+  const SlimmingResult r = slim_supports(bunny(), o);
+  EXPECT_LT(r.after.risky_area, 0.92 * r.before.risky_area);  // at least 8% less
+  EXPECT_EQ(r.history.back().inverted_tets, 0);
+  EXPECT_LE(r.displacement.maxCoeff(), 0.05 * diag(bunny()) * (1 + 1e-9));
+  EXPECT_EQ(r.surface.F, bunny().F);  // topology unchanged
+  // The base stays on the plate: nothing below it, and the lowest point is still on it.
+  EXPECT_GE(r.surface.V.col(2).minCoeff(), bunny().V.col(2).minCoeff() - 1e-9);
+  EXPECT_NEAR(r.surface.V.col(2).minCoeff(), bunny().V.col(2).minCoeff(), 1e-9);
+  // The reported figures are those of the returned surface.
+  const OverhangReport check = analyse_overhang(r.surface, {Eigen::Vector3d::UnitZ(), 45.0, 1e-3 * diag(bunny())});
+  EXPECT_NEAR(check.risky_area, r.after.risky_area, 1e-9);
+  EXPECT_NEAR(r.history.back().risky_area, r.after.risky_area, 1e-9);
+}
+
+TEST(Slimming, PaperMethodAlsoHelpsAndCoherentHelpsMore) {
+  SlimmingOptions o;
+  o.max_deviation_pct = 5.0;
+  o.method = SlimmingMethod::Paper;
+  const SlimmingResult paper = slim_supports(bunny(), o);
+  o.method = SlimmingMethod::Coherent;
+  const SlimmingResult coherent = slim_supports(bunny(), o);
+  EXPECT_LT(paper.after.risky_area, 0.97 * paper.before.risky_area);
+  EXPECT_LT(coherent.after.risky_area, paper.after.risky_area);
+}
+
+TEST(Slimming, ArchOpeningIsSlimmedWithALargeBudget) {
+  SlimmingOptions o;
+  o.max_deviation_pct = 10.0;
+  const SlimmingResult r = slim_supports(test::refined(test::arch(), 3), o);
+  EXPECT_LT(r.after.risky_area, 0.7 * r.before.risky_area);
+}
+
+TEST(Slimming, TShapeOverhangsMoveTowardsSafe) {
+  // At 45 degrees the T's flat arm undersides need about 45 degrees of rotation, more than any
+  // budget here allows, so the risky area barely moves; the deficit must still fall.
+  SlimmingOptions o;
+  o.max_deviation_pct = 5.0;
+  const SlimmingResult r = slim_supports(test::refined(test::t_shape(), 3), o);
+  EXPECT_LE(r.after.risky_area, r.before.risky_area);
+  EXPECT_LT(r.after.risky_deficit, 0.97 * r.before.risky_deficit);
+  EXPECT_EQ(r.history.back().inverted_tets, 0);
+}
+
+TEST(Slimming, SafeMeshComesBackUnchanged) {
+  const Surface cube = test::box({0, 0, 0}, {10, 10, 10});
+  const SlimmingResult r = slim_supports(cube, {});
+  EXPECT_EQ(r.iterations, 0);
+  EXPECT_LE((r.surface.V - cube.V).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_EQ(r.history.size(), 1u);
+}
+
+TEST(Slimming, ZeroIterationsEmbedsAndWritesBack) {
+  SlimmingOptions o;
+  o.max_iterations = 0;
+  const SlimmingResult r = slim_supports(bunny(), o);
+  EXPECT_LE((r.surface.V - bunny().V).cwiseAbs().maxCoeff(), 1e-9 * diag(bunny()));
+  EXPECT_EQ(r.iterations, 0);
+}
+
+TEST(Slimming, DeviationBudgetHoldsAtEveryLevel) {
+  for (double budget : {1.0, 2.0, 3.0}) {
+    SlimmingOptions o;
+    o.max_deviation_pct = budget;
+    const SlimmingResult r = slim_supports(bunny(), o);
+    EXPECT_LE(r.displacement.maxCoeff(), budget / 100.0 * diag(bunny()) * (1 + 1e-9)) << budget;
+    EXPECT_LE(r.after.risky_area, r.before.risky_area);
+  }
+}
+
+TEST(Slimming, SameResultWithOneAndTwoThreads) {
+  SlimmingOptions o;
+  o.max_iterations = 6;
+  o.threads = 1;
+  const SlimmingResult one = slim_supports(bunny(), o);
+  o.threads = 2;
+  const SlimmingResult two = slim_supports(bunny(), o);
+  EXPECT_EQ(one.surface.V, two.surface.V);  // bit for bit
+  ASSERT_EQ(one.history.size(), two.history.size());
+  for (size_t i = 0; i < one.history.size(); ++i) {
+    EXPECT_EQ(one.history[i].risky_area, two.history[i].risky_area);
+    EXPECT_EQ(one.history[i].energy, two.history[i].energy);
+  }
+}
+
+TEST(Slimming, RigidFeatureKeepsItsShapeWhileTheRestBends) {
+  // The feature: the bunny's head and ears (the top 30%), a large overhang-bearing region.
+  const Surface& s = bunny();
+  const double zmax = s.V.col(2).maxCoeff();
+  std::vector<bool> feature(static_cast<size_t>(s.F.rows()), false);
+  std::vector<int> feature_vertices;
+  std::vector<bool> seen(static_cast<size_t>(s.V.rows()), false);
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
+    bool top = true;
+    for (int k = 0; k < 3; ++k) top = top && s.V(s.F(f, k), 2) > 0.7 * zmax;
+    feature[static_cast<size_t>(f)] = top;
+    if (top)
+      for (int k = 0; k < 3; ++k)
+        if (!seen[static_cast<size_t>(s.F(f, k))]) {
+          seen[static_cast<size_t>(s.F(f, k))] = true;
+          feature_vertices.push_back(s.F(f, k));
+        }
+  }
+  ASSERT_GT(feature_vertices.size(), 50u);
+  SlimmingOptions o;
+  o.max_deviation_pct = 5.0;
+  o.rigid_features = feature;
+  const SlimmingResult r = slim_supports(s, o);
+  ASSERT_GT(r.iterations, 0);
+  double worst = 0.0;
+  for (size_t a = 0; a < feature_vertices.size(); a += 7)
+    for (size_t b = a + 1; b < feature_vertices.size(); b += 5) {
+      const double before = (s.V.row(feature_vertices[a]) - s.V.row(feature_vertices[b])).norm();
+      const double after = (r.surface.V.row(feature_vertices[a]) - r.surface.V.row(feature_vertices[b])).norm();
+      if (before > 0.05 * diag(s)) worst = std::max(worst, std::abs(after / before - 1.0));
+    }
+  EXPECT_LE(worst, 0.01);
+  // The rest does bend: some unselected vertex moved by a clear amount.
+  double moved = 0.0;
+  for (Eigen::Index v = 0; v < s.V.rows(); ++v)
+    if (!seen[static_cast<size_t>(v)]) moved = std::max(moved, r.displacement(v));
+  EXPECT_GT(moved, 1e-3 * diag(s));
+}
+
+TEST(Slimming, CancelStopsTheRun) {
+  SlimmingOptions o;
+  int calls = 0;
+  o.progress = [&](double, const std::string&) { return ++calls < 3; };
+  EXPECT_THROW(slim_supports(bunny(), o), Cancelled);
+  EXPECT_EQ(calls, 3);
+}
+
+TEST(Slimming, BadInputIsRefusedWithAReason) {
+  EXPECT_THROW(slim_supports(Surface{}, {}), std::invalid_argument);
+  SlimmingOptions o;
+  o.alpha_max_deg = -5;
+  EXPECT_THROW(slim_supports(test::t_shape(), o), std::invalid_argument);
+  o = {};
+  o.rigid_features = {true, false};
+  EXPECT_THROW(slim_supports(test::t_shape(), o), std::invalid_argument);
+  o = {};
+  o.resolution = 0;
+  EXPECT_THROW(slim_supports(test::t_shape(), o), std::invalid_argument);
+}
