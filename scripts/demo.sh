@@ -16,6 +16,9 @@ run() {  # run SCRIPT OUTPUT LOG
     -m fq fc vq sa -s "$here/examples/$1" >"$3" 2>&1 || { cat "$3"; exit 1; }
   if grep -q "Problem with filter" "$3"; then cat "$3"; exit 1; fi
 }
+# The filter's log lines, one figure a line (meshlabserver prefixes them with "LOG: <level>").
+report() { grep "^LOG: [0-9]* $1: " "$2" | sed "s/^LOG: [0-9]* $1: /  /; s/; /\n  /g"; }
+
 run overhang_analysis.mlx "$out/bunny_overhang.ply" "$out/bunny_overhang.log"
 run support_slimming.mlx "$out/bunny_slimmed.ply" "$out/bunny_slimmed.log"
 
@@ -23,10 +26,10 @@ echo
 echo "The sample bunny, printed along +Z with a 45 degree self-supporting angle:"
 echo
 echo "Overhang Analysis (input):"
-grep -m1 -o "Overhang Analysis: .*" "$out/bunny_overhang.log" | sed 's/^Overhang Analysis: /  /; s/; /\n  /g'
+report "Overhang Analysis" "$out/bunny_overhang.log"
 echo
 echo "Support Slimming (examples/support_slimming.mlx, deviation budget 5% of the bbox diagonal):"
-grep "^Support Slimming: " "$out/bunny_slimmed.log" | sed 's/^Support Slimming: /  /; s/; /\n  /g'
+report "Support Slimming" "$out/bunny_slimmed.log"
 echo
 echo "Results (open in MeshLab; red = needs support, blue = safe):"
 echo "  input:    $out/bunny_overhang.ply"

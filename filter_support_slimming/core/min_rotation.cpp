@@ -3,11 +3,11 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <cstdint>
-#include <utility>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace slim {
@@ -61,11 +61,11 @@ Eigen::Matrix3Xd nonzero_unit_columns(const Eigen::Matrix3Xd& normals) {
   return unit;
 }
 
-// Edges of the convex hull of m >= 4 distinct unit vectors (3 by m), with the two vertices facing
-// each edge. Circles i and j can only
-// meet at a feasible point if (i, j) is a hull edge: at a feasible crossing p the plane
-// x·p = -tau has every normal on its side x·p >= -tau and n_i, n_j on it, so it supports the
-// hull along an edge (i, j). (This is the spherical Delaunay triangulation of the cap centres.)
+// Edges of the convex hull of m >= 4 distinct unit vectors (3 by m), each with the two vertices
+// facing it. Why: circles i and j can only meet at a feasible point if (i, j) is a hull edge. At
+// a feasible crossing p, the plane x·p = -tau has every normal on the side x·p >= -tau and n_i,
+// n_j on it, so it supports the hull along the edge (i, j). (The hull is the spherical Delaunay
+// triangulation of the cap centres; its edges are O(m), against O(m²) pairs.)
 //
 // Incremental construction in a fixed pseudo-random order; every point not yet added waits in
 // the outside set of one facet it sees (Quickhull), so the expected cost is O(m log m). Returns
@@ -102,7 +102,8 @@ class SphereHullEdges {
   }
 
  private:
-  // Heights are 6 x tetrahedron volumes of unit vectors, computed to ~1e-15: trust beyond 1e-12.
+  // Heights are 6 x tetrahedron volumes of unit vectors, computed to within ~1e-16: a height
+  // beyond 1e-12 has a certain sign.
   static constexpr double kTrusted = 1e-12;
 
   struct Facet {
@@ -254,7 +255,7 @@ class SphereHullEdges {
   std::vector<Facet> facets_;
   std::vector<int> next_outside_;  // per point: the next one in the same outside set
   std::vector<int> holder_;        // per point: the facet whose outside set holds it
-  std::vector<int> start_at_;  // per vertex: the new cone facet whose horizon edge starts there
+  std::vector<int> start_at_;      // per vertex: the new cone facet whose horizon edge starts there
   std::array<int, 4> simplex_{};
   int step_ = 0;
   std::vector<int> visible_, cone_;  // scratch for add_point, kept to reuse their memory
@@ -274,7 +275,7 @@ class NearestFeasiblePoint {
       return true;
     }
     offer_circle_points();
-    if (n_.cols() < kHullFrom || !offer_hull_crossings()) offer_crossings();
+    if (n_.cols() < kHullFrom || !offer_hull_crossings()) offer_all_pair_crossings();
     if (kept_.empty()) return false;
     closest = tie_broken_choice();
     return true;
@@ -323,11 +324,11 @@ class NearestFeasiblePoint {
     if (d_.dot(p) >= screen_ && is_feasible(p)) keep(p);
   }
 
-  // A feasible unit point: kept when within tie_tolerance of the best angle so far.
+  // A feasible point, unit up to rounding: kept when within tie_tolerance of the best angle so far.
   void keep(const Eigen::Vector3d& p) {
     const double angle = std::atan2(p.cross(d_).norm(), d_.dot(p));
     if (angle > best_angle_ + tie_tolerance_) return;
-    kept_.push_back({p, angle});
+    kept_.push_back({p.normalized(), angle});
     if (angle < best_angle_) {
       best_angle_ = angle;
       const double limit = best_angle_ + tie_tolerance_;
@@ -366,7 +367,7 @@ class NearestFeasiblePoint {
   // the crossings are p = p0 ± h u, p0 = -2 tau S / |S|², u = S × D / |S × D|,
   // h = sqrt(1 - 4 tau² / |S|²); they exist when |S| >= 2 tau. S × D = 2 n_i × n_j, but keeps
   // full relative precision for near-duplicate and near-antipodal normals.
-  void offer_crossings() {
+  void offer_all_pair_crossings() {
     const Eigen::Index m = n_.cols();
     // Structure of arrays in one block, so that the screening loop below vectorises. Columns:
     // n_i (x, y, z), d·n_i, d × n_i (as (d × n_i)·n_j = d·(n_i × n_j)), the screen's verdicts.
@@ -381,7 +382,8 @@ class NearestFeasiblePoint {
     for (Eigen::Index i = 0; i < m; ++i) {
       // Screen without sqrt or division: |S|² d·p± = -2 tau (a_i + a_j) ± 2 t sqrt((|S|² - 4 tau²) / |D|²)
       // with a = d·n and t = d·(n_i × n_j). A pair survives when its caps touch and its nearer
-      // crossing is not beyond the screen. Branch-free, so that it vectorises.
+      // crossing is not beyond the screen. Branch-free, so that it vectorises. (Only for normals
+      // a few ulps apart is the screen unreliable; their circles coincide within the tolerance.)
       const double xi = px[i], yi = py[i], zi = pz[i], ai = pa[i], exi = ex[i], eyi = ey[i], ezi = ez[i];
       const double screen = screen_;
       for (Eigen::Index j = i + 1; j < m; ++j) {
@@ -400,7 +402,7 @@ class NearestFeasiblePoint {
     }
   }
 
-  // The crossings p0 ± hu of circles i and j (see offer_crossings); false when there are none
+  // The crossings p0 ± hu of circles i and j (see offer_all_pair_crossings); false when there are none
   // or infinitely many (identical or antipodal circles), h = 0 when they touch.
   bool crossing_frame(const Eigen::Vector3d& ni, const Eigen::Vector3d& nj, Eigen::Vector3d& p0,
                       Eigen::Vector3d& hu, double& h) const {
@@ -439,8 +441,8 @@ class NearestFeasiblePoint {
         return;
       }
     }
-    if (plus) keep((p0 + hu).normalized());
-    if (minus) keep((p0 - hu).normalized());
+    if (plus) keep(p0 + hu);
+    if (minus) keep(p0 - hu);
   }
 
   // With many normals only the crossings of hull edges (see SphereHullEdges).
@@ -457,9 +459,9 @@ class NearestFeasiblePoint {
 
     std::vector<SphereHullEdges::Edge> edges;
     if (!SphereHullEdges(distinct).build(edges)) return false;
-    // A crossing of edge (i, j) is feasible exactly when it lies on the Voronoi edge of i and j,
-    // that is when the two neighbours k and l across the edge leave it alone: an O(1) test that
-    // rejects nearly every candidate before the full check.
+    // A crossing of edge (i, j) can only be feasible if the two vertices k and l facing the edge
+    // leave it alone (and then it nearly always is: it lies on the Voronoi edge of i and j). That
+    // O(1) test rejects almost every infeasible candidate before the full O(n) check.
     const double bound = -tau_ - kMinRotationFeasibilityTolerance;
     for (const auto& e : edges) {
       Eigen::Vector3d p0, hu;
