@@ -6,6 +6,7 @@
 #include <cmath>
 #include <exception>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -41,6 +42,17 @@
 
 namespace slim {
 namespace {
+
+// Adds the time since construction to a counter when it goes out of scope.
+class StageTimer {
+ public:
+  explicit StageTimer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~StageTimer() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 struct CoherentSettings {
   double interior_weight = 0.2;
@@ -202,16 +214,31 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
   TetMesh domain;
   Eigen::Array<bool, Eigen::Dynamic, 1> on_plate;
   Embedding emb;
+  auto& times = r.stage_seconds;
   if (o.domain == DomainKind::Voxel) {
     VoxelDomainOptions vo;
     vo.resolution = o.resolution;
-    VoxelDomain vd = voxel_domain(input, d, vo);
-    emb = embed_surface(input, vd);
+    VoxelDomain vd;
+    {
+      StageTimer timer(times.domain);
+      vd = voxel_domain(input, d, vo);
+    }
+    {
+      StageTimer timer(times.embedding);
+      emb = embed_surface(input, vd);
+    }
     domain = std::move(vd.mesh);
     on_plate = std::move(vd.on_plate);
   } else {
-    TetgenDomain td = tetgen_domain(input, d);
-    emb = embed_surface(input, td.mesh);
+    TetgenDomain td;
+    {
+      StageTimer timer(times.domain);
+      td = tetgen_domain(input, d);
+    }
+    {
+      StageTimer timer(times.embedding);
+      emb = embed_surface(input, td.mesh);
+    }
     domain = std::move(td.mesh);
     on_plate = std::move(td.on_plate);
   }
@@ -275,7 +302,12 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
     if (on_plate(v)) pinned.push_back(static_cast<int>(v));
   ArapOptions ao;
   ao.anchor_floating_components = true;  // a part that does not touch the plate stays where it is
-  const ArapSolver arap(domain, weights, pinned, ao);
+  std::unique_ptr<ArapSolver> solver;
+  {
+    StageTimer timer(times.factorization);
+    solver = std::make_unique<ArapSolver>(domain, weights, pinned, ao);
+  }
+  const ArapSolver& arap = *solver;
   r.solver_backend = arap.backend_name();
   const std::vector<std::vector<int>> neighbours = coherent ? tet_neighbours(domain.T) : std::vector<std::vector<int>>{};
 
@@ -294,6 +326,7 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
 
   for (int it = 1; it <= o.max_iterations; ++it) {
     // Local step: M_t from the current shape, R_t from the rest normals turned by M_t.
+    auto local_timer = std::make_unique<StageTimer>(times.local);
     parallel_for(nt, [&](int t) {
       const size_t ts = static_cast<size_t>(t);
       M[ts] = closest_rotation(edge_matrix(V, domain.T.row(t)) * rest_inverse[ts]);
@@ -378,8 +411,13 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
       for (int t : tets) L[static_cast<size_t>(t)] = Rf * Mf;
     }
 
+    local_timer.reset();
+
     // Global step, then keep everything on or above the plate.
+    auto global_timer = std::make_unique<StageTimer>(times.global);
     Points Vnew = arap.solve(L, domain.V);
+    global_timer.reset();
+    StageTimer measure_timer(times.measure);
     for (Eigen::Index v = 0; v < Vnew.rows(); ++v) {
       const double below = plate - Vnew.row(v).dot(d.transpose());
       if (below > 0.0) Vnew.row(v) += below * d.transpose();

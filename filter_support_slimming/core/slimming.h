@@ -90,7 +90,15 @@ struct SlimmingResult {
   double volume_before = 0.0, volume_after = 0.0;  // signed enclosed volume, mm³
   int domain_vertices = 0, domain_tets = 0;
   std::string solver_backend;
-  double seconds = 0.0;
+  double seconds = 0.0;               // wall time of the whole run
+  struct StageSeconds {               // wall time per stage, summed over iterations
+    double domain = 0.0;              // voxel or TetGen domain
+    double embedding = 0.0;           // barycentric coordinates and clipped face pieces
+    double factorization = 0.0;       // the global step's assembly and its one factorization
+    double local = 0.0;               // polar decompositions, minimal rotations, coherence
+    double global = 0.0;              // right-hand sides and back-substitutions
+    double measure = 0.0;             // write-back to the surface and the statistics
+  } stage_seconds;
 };
 
 struct Cancelled : std::exception {

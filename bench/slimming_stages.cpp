@@ -1,0 +1,90 @@
+// Per-stage times of Support Slimming on voxel domains of about 1k, 10k and 50k vertices (the
+// sample bunny at three resolutions), medians over repeated runs, and the ratio of one whole
+// iteration to one bare back-substitution of the same factor, measured in the same run.
+//   slimming_stages [--runs N] [--iterations N]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/arap.h"
+#include "core/slimming.h"
+#include "core/voxel_domain.h"
+#include "support/shapes.h"
+
+using namespace slim;
+
+namespace {
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+long peak_rss_mb() {
+  FILE* f = std::fopen("/proc/self/status", "r");
+  char line[256];
+  long kb = 0;
+  while (f && std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "VmHWM: %ld kB", &kb) == 1) break;
+  if (f) std::fclose(f);
+  return kb / 1024;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  int runs = 5, iterations = 20;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--runs") runs = std::stoi(argv[i + 1]);
+    if (a == "--iterations") iterations = std::stoi(argv[i + 1]);
+  }
+  const Surface bunny = test::load_mesh(test::sample_bunny_path());
+  std::printf("median of %d runs, %d iterations each, no budget, no stall stop; times in ms\n", runs, iterations);
+  std::printf("%10s %8s %8s | %7s %7s %8s | %8s %8s %9s | %7s %7s %6s | %8s\n", "resolution", "dom.V", "dom.T",
+              "domain", "embed", "factor", "local/it", "glob/it", "iteration", "backsub", "ratio", "50 it", "total");
+  for (int resolution : {13, 32, 60}) {
+    std::vector<double> dom, emb, fac, loc, glo, it, back, total;
+    SlimmingResult r;
+    for (int k = 0; k < runs; ++k) {
+      SlimmingOptions o;
+      o.resolution = resolution;
+      o.max_iterations = iterations;
+      o.max_deviation_pct = 0.0;
+      o.stall_tolerance = -1e300;  // run every iteration
+      const auto t0 = std::chrono::steady_clock::now();
+      r = slim_supports(bunny, o);
+      total.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      const auto& s = r.stage_seconds;
+      dom.push_back(1e3 * s.domain);
+      emb.push_back(1e3 * s.embedding);
+      fac.push_back(1e3 * s.factorization);
+      loc.push_back(1e3 * s.local / iterations);
+      glo.push_back(1e3 * s.global / iterations);
+      it.push_back(1e3 * (s.local + s.global + s.measure) / iterations);
+    }
+    // One bare back-substitution of the same system (3 right-hand sides), in the same run.
+    const VoxelDomain vd = voxel_domain(bunny, Eigen::Vector3d::UnitZ(), {resolution});
+    std::vector<int> pinned;
+    for (Eigen::Index v = 0; v < vd.on_plate.size(); ++v)
+      if (vd.on_plate(v)) pinned.push_back(static_cast<int>(v));
+    ArapOptions ao;
+    ao.anchor_floating_components = true;
+    const ArapSolver arap(vd.mesh, pinned, ao);
+    const std::vector<Eigen::Matrix3d> L(static_cast<size_t>(vd.mesh.T.rows()), Eigen::Matrix3d::Identity());
+    const Eigen::MatrixXd rhs = arap.assemble_rhs(L, vd.mesh.V);
+    for (int k = 0; k < std::max(runs, 5); ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const Eigen::MatrixXd x = arap.back_substitute(rhs);
+      back.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      if (!x.allFinite()) return 1;
+    }
+    const double per_it = median(it);
+    std::printf("%10d %8d %8d | %7.1f %7.1f %8.1f | %8.2f %8.2f %9.2f | %7.2f %7.1f %6.0f | %8.0f\n", resolution,
+                r.domain_vertices, r.domain_tets, median(dom), median(emb), median(fac), median(loc), median(glo),
+                per_it, median(back), per_it / median(back),
+                median(dom) + median(emb) + median(fac) + 50 * per_it, median(total));
+  }
+  std::printf("peak memory (VmHWM): %ld MB\n", peak_rss_mb());
+  return 0;
+}
