@@ -112,10 +112,14 @@ GaussKmeans gauss_kmeans(const Eigen::Matrix3Xd& normals_in, const Eigen::Vector
     bool reassigned = false;
     for (Eigen::Index i = 0; i < n; ++i) {
       if (!used[static_cast<size_t>(i)]) continue;
-      Eigen::Index best = 0;
-      (r.centroids.transpose() * normals.col(i)).maxCoeff(&best);  // first maximum: lowest index
+      int best = 0;  // the largest n·c; the first one on ties
+      double best_closeness = r.centroids.col(0).dot(normals.col(i));
+      for (Eigen::Index c = 1; c < clusters; ++c) {
+        const double closeness = r.centroids.col(c).dot(normals.col(i));
+        if (closeness > best_closeness) best = static_cast<int>(c), best_closeness = closeness;
+      }
       if (r.assignment(i) != best) reassigned = true;
-      r.assignment(i) = static_cast<int>(best);
+      r.assignment(i) = best;
     }
 
     Eigen::Matrix3Xd sums = Eigen::Matrix3Xd::Zero(3, clusters);

@@ -337,8 +337,16 @@ TEST(Arap, BadInputThrowsReadableErrors) {
 }
 
 TEST(Arap, NoSilentBackendSwitch) {
-  if (ArapSolver::cholmod_available()) GTEST_SKIP() << "CHOLMOD is built in";
-  ArapOptions o;
-  o.backend = Backend::Cholmod;
-  EXPECT_THROW(ArapSolver(small_grid(), plate(), o), std::invalid_argument);
+  // Asking for CHOLMOD gives CHOLMOD when it is built in, and an error (never a quiet fallback to
+  // Eigen) when it is not; Auto names what it chose.
+  for (Backend b : {Backend::Cholmod, Backend::CholmodSimplicial}) {
+    ArapOptions o;
+    o.backend = b;
+    if (ArapSolver::cholmod_available())
+      EXPECT_NE(ArapSolver(small_grid(), plate(), o).backend_name().find("CHOLMOD"), std::string::npos);
+    else
+      EXPECT_THROW(ArapSolver(small_grid(), plate(), o), std::invalid_argument);
+  }
+  const std::string chosen = ArapSolver(small_grid(), plate()).backend_name();
+  EXPECT_NE(chosen.find(ArapSolver::cholmod_available() ? "CHOLMOD" : "Eigen"), std::string::npos) << chosen;
 }

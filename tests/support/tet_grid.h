@@ -3,6 +3,8 @@
 // all cubes use the same split, so neighbouring cubes share faces exactly (a conforming mesh).
 #pragma once
 
+#include <vector>
+
 #include "core/tet_mesh.h"
 
 namespace slim::test {
