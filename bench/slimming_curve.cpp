@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
     else if (a == "--resolution") base.resolution = std::stoi(v);
     else if (a == "--iterations") base.max_iterations = std::stoi(v);
     else if (a == "--stall") base.stall_tolerance = std::stod(v);
+    else if (a == "--step") base.max_step_deg = std::stod(v);
     else if (a == "--budgets") {
       budgets.clear();
       std::stringstream ss(v);

@@ -29,13 +29,7 @@ double geodesic(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 
 void check_inputs(const Eigen::Matrix3Xd& normals, const Eigen::VectorXd& weights, int k,
                   const GaussKmeansOptions& options) {
-  if (weights.size() != normals.cols())
-    throw std::invalid_argument("gauss_kmeans: " + std::to_string(normals.cols()) + " normals but " +
-                                std::to_string(weights.size()) + " weights");
-  for (Eigen::Index i = 0; i < weights.size(); ++i)
-    if (!(weights(i) >= 0.0) || !std::isfinite(weights(i)))
-      throw std::invalid_argument("gauss_kmeans: weight " + std::to_string(i) + " must be finite and >= 0");
-  check_face_normals(normals, "gauss_kmeans");
+  check_face_normals_and_areas(normals, weights, "gauss_kmeans");
   if (k < 1) throw std::invalid_argument("gauss_kmeans: k must be >= 1, got " + std::to_string(k));
   if (options.max_iterations < 1)
     throw std::invalid_argument("gauss_kmeans: max_iterations must be >= 1");
@@ -82,6 +76,16 @@ Eigen::Matrix3Xd seed_centroids(const Eigen::Matrix3Xd& normals, const Eigen::Ve
 }
 
 }  // namespace
+
+void check_face_normals_and_areas(const Eigen::Matrix3Xd& normals, const Eigen::VectorXd& areas, const char* caller) {
+  if (areas.size() != normals.cols())
+    throw std::invalid_argument(std::string(caller) + ": " + std::to_string(normals.cols()) + " normals but " +
+                                std::to_string(areas.size()) + " areas");
+  for (Eigen::Index i = 0; i < areas.size(); ++i)
+    if (!(areas(i) >= 0.0) || !std::isfinite(areas(i)))
+      throw std::invalid_argument(std::string(caller) + ": area " + std::to_string(i) + " must be finite and >= 0");
+  check_face_normals(normals, caller);
+}
 
 GaussKmeans gauss_kmeans(const Eigen::Matrix3Xd& normals_in, const Eigen::VectorXd& weights, int k,
                          const GaussKmeansOptions& options) {

@@ -61,4 +61,8 @@ struct GaussKmeans {
 GaussKmeans gauss_kmeans(const Eigen::Matrix3Xd& normals, const Eigen::VectorXd& weights, int k,
                          const GaussKmeansOptions& options = {});
 
+// Throws std::invalid_argument, naming `caller`, unless the 3 by n `normals` pass
+// check_face_normals (min_rotation.h) and `areas` holds n finite values >= 0.
+void check_face_normals_and_areas(const Eigen::Matrix3Xd& normals, const Eigen::VectorXd& areas, const char* caller);
+
 }  // namespace slim

@@ -12,13 +12,7 @@ namespace slim {
 namespace {
 
 void check_inputs(const Eigen::Matrix3Xd& normals, const Eigen::VectorXd& areas, const ProxyOptions& options) {
-  if (areas.size() != normals.cols())
-    throw std::invalid_argument("proxy_rotation: " + std::to_string(normals.cols()) + " normals but " +
-                                std::to_string(areas.size()) + " areas");
-  for (Eigen::Index i = 0; i < areas.size(); ++i)
-    if (!(areas(i) >= 0.0) || !std::isfinite(areas(i)))
-      throw std::invalid_argument("proxy_rotation: area " + std::to_string(i) + " must be finite and >= 0");
-  check_face_normals(normals, "proxy_rotation");  // before the zero-area faces are dropped
+  check_face_normals_and_areas(normals, areas, "proxy_rotation");  // before zero-area faces are dropped
   if (options.max_k < 1) throw std::invalid_argument("proxy_rotation: max_k must be >= 1");
   if (!(options.ae_threshold >= 0.0 && options.ae_threshold <= M_PI))
     throw std::invalid_argument("proxy_rotation: ae_threshold must be an angle in [0, pi] radians");

@@ -15,8 +15,9 @@
 //
 // Stopping: the first of  max_iterations;  the overhang deficit (overhang.h: risky area weighted
 // by how far each face is from safe) no longer falling by stall_tolerance of its initial value;
-// the deviation budget (the largest vertex displacement, % of the bbox diagonal: the step that
-// overshoots it is rolled back and replaced by the largest fraction of it that fits);  cancel.
+// cancel. The deviation budget (the largest vertex displacement, % of the bbox diagonal) is a
+// constraint, not a stop: after every global step the part of the step that would take a domain
+// vertex past the budget is rolled back, so no surface vertex ever moves further.
 // The result is the iterate with the least risky area (the later one on ties).
 #pragma once
 
