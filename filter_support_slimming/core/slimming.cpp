@@ -33,6 +33,8 @@
 //  * Deviation budget: each domain vertex's displacement from rest is projected onto the budget
 //    ball after every global step (the overshooting part of the step is rolled back). Surface
 //    vertices are convex combinations of domain vertices, so the surface cannot overshoot either.
+//  * Inversion guard: a step that would invert a tet is cut back to the largest fraction that
+//    keeps every tet positive, and the run stops there.
 //  * Output: the best iterate (least risky area).
 //
 // What SlimmingMethod::Coherent adds to the paper (each measured, see README):
@@ -479,6 +481,26 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
         disp = (surface_new - input.V).rowwise().norm();
       }
     }
+    // Inversion guard: a step that would turn a tet inside out is cut back to the largest fraction
+    // that keeps every tet positive (bisection), and the run stops there.
+    auto inverted = [&](const Points& P) {
+      int count = 0;
+      for (int t = 0; t < nt; ++t) count += edge_matrix(P, domain.T.row(t)).determinant() <= 0.0;
+      return count;
+    };
+    bool inversion_stop = false;
+    if (inverted(Vnew) > 0) {
+      const Points step = Vnew - V;
+      double lo = 0.0, hi = 1.0;
+      for (int b = 0; b < 20; ++b) {
+        const double mid = 0.5 * (lo + hi);
+        (inverted(V + mid * step) == 0 ? lo : hi) = mid;
+      }
+      Vnew = V + lo * step;
+      embedded_positions(emb, Vnew, surface_new);
+      disp = (surface_new - input.V).rowwise().norm();
+      inversion_stop = true;
+    }
     Surface deformed{surface_new, input.F};
     IterationStats st;
     st.iteration = it;
@@ -510,6 +532,10 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
       r.iterations = it;
     }
     report(0.1 + 0.9 * it / o.max_iterations, "iteration " + std::to_string(it) + ": risky area " + std::to_string(st.risky_area));
+    if (inversion_stop) {
+      why = "a tetrahedron would have inverted (step cut back)";
+      break;
+    }
     if (budget_stop) {
       why = "deviation budget reached by a rigid feature";
       break;
