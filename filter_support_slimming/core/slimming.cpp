@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -85,21 +86,29 @@ void validate(const Surface& input, const SlimmingOptions& o) {
     throw std::invalid_argument("the rigid-feature marks must have one entry per face");
 }
 
-// Face-adjacent tets (sharing a triangle), as lists; deterministic order.
+// Face-adjacent tets (sharing a triangle), as lists in ascending order. Sorting the 4 #T face
+// keys finds the shared ones without a map.
 std::vector<std::vector<int>> tet_neighbours(const Tets& T) {
-  std::map<std::array<int, 3>, int> first;
-  std::vector<std::vector<int>> adj(static_cast<size_t>(T.rows()));
+  struct Key {
+    std::array<int, 3> v;
+    int tet;
+  };
+  std::vector<Key> keys;
+  keys.reserve(static_cast<size_t>(4 * T.rows()));
   for (int t = 0; t < T.rows(); ++t)
     for (int skip = 0; skip < 4; ++skip) {
-      std::array<int, 3> key{};
-      for (int k = 0, j = 0; k < 4; ++k)
-        if (k != skip) key[static_cast<size_t>(j++)] = T(t, k);
-      std::sort(key.begin(), key.end());
-      auto [it, inserted] = first.emplace(key, t);
-      if (!inserted) {
-        adj[static_cast<size_t>(t)].push_back(it->second);
-        adj[static_cast<size_t>(it->second)].push_back(t);
-      }
+      Key k{{}, t};
+      for (int c = 0, j = 0; c < 4; ++c)
+        if (c != skip) k.v[static_cast<size_t>(j++)] = T(t, c);
+      std::sort(k.v.begin(), k.v.end());
+      keys.push_back(k);
+    }
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) { return a.v != b.v ? a.v < b.v : a.tet < b.tet; });
+  std::vector<std::vector<int>> adj(static_cast<size_t>(T.rows()));
+  for (size_t i = 1; i < keys.size(); ++i)
+    if (keys[i].v == keys[i - 1].v) {
+      adj[static_cast<size_t>(keys[i].tet)].push_back(keys[i - 1].tet);
+      adj[static_cast<size_t>(keys[i - 1].tet)].push_back(keys[i].tet);
     }
   for (auto& a : adj) std::sort(a.begin(), a.end());
   return adj;
@@ -141,24 +150,26 @@ Eigen::Matrix3d average_rotation(const std::vector<std::pair<double, Eigen::Quat
   return q.toRotationMatrix();
 }
 
-// Runs body(t) for t in [0, n) in parallel; the exception of the lowest t is rethrown after the
-// loop, so nothing escapes the OpenMP region and the reported error does not depend on threads.
+// Runs body(t) for t in [0, n) in parallel. The exception of the lowest failing t is rethrown
+// after the loop, so nothing escapes the OpenMP region (that would terminate MeshLab) and the
+// reported error does not depend on the thread count.
 template <class Body>
 void parallel_for(int n, Body&& body) {
-  std::vector<std::exception_ptr> errors(static_cast<size_t>(n));
-  bool any = false;
-#pragma omp parallel for schedule(static) reduction(|| : any)
+  int first_failure = n;
+  std::exception_ptr error;
+#pragma omp parallel for schedule(static)
   for (int t = 0; t < n; ++t) {
     try {
       body(t);
     } catch (...) {
-      errors[static_cast<size_t>(t)] = std::current_exception();
-      any = true;
+#pragma omp critical(slim_parallel_for_error)
+      if (t < first_failure) {
+        first_failure = t;
+        error = std::current_exception();
+      }
     }
   }
-  if (any)
-    for (auto& e : errors)
-      if (e) std::rethrow_exception(e);
+  if (error) std::rethrow_exception(error);
 }
 
 class ThreadScope {
@@ -336,15 +347,20 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
   Points surface_V = input.V;
   double best_risky = r.before.risky_area;
   std::vector<Eigen::Matrix3d> L(static_cast<size_t>(nt)), M(static_cast<size_t>(nt)), extra(static_cast<size_t>(nt));
+  std::vector<Eigen::Matrix3d> blended(coherent ? static_cast<size_t>(nt) : 0);  // reused every iteration
   std::vector<double> ae_area(static_cast<size_t>(nt)), risky_weight(static_cast<size_t>(nt));
   const double max_step = o.max_step_deg * M_PI / 180.0;
   const double budget = o.max_deviation_pct > 0.0 ? o.max_deviation_pct / 100.0 * diag : HUGE_VAL;
   ProxyOptions po;
   po.max_k = o.max_k;
+  double piece_area = 0.0;  // AE is a share of the area that takes part in the local step
+  for (const auto& tet_pieces : pieces)
+    for (const auto& pc : tet_pieces) piece_area += pc.second;
   const double plate = (domain.V * d).minCoeff();
   std::string why = "iteration limit reached";
 
   for (int it = 1; it <= o.max_iterations; ++it) {
+    r.iterations_run = it;
     // Local step: M_t from the current shape, R_t from the rest normals turned by M_t.
     auto local_timer = std::make_unique<StageTimer>(times.local);
     parallel_for(nt, [&](int t) {
@@ -354,17 +370,16 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
       ae_area[ts] = risky_weight[ts] = 0.0;
       const auto& pc = pieces[ts];
       if (pc.empty() || tet_feature[ts] >= 0) return;
+      // Most surface tets are safe: look before building the patch.
+      for (const auto& [face, area] : pc)
+        if ((M[ts] * n0.row(face).transpose()).dot(d) + tau_solve < 0) risky_weight[ts] += area;
+      const bool risky = risky_weight[ts] > 0.0;
+      if (!risky) return;
       Eigen::Matrix3Xd normals(3, static_cast<Eigen::Index>(pc.size()));
       Eigen::VectorXd areas(static_cast<Eigen::Index>(pc.size()));
-      bool risky = false;
       for (size_t i = 0; i < pc.size(); ++i) {
         normals.col(static_cast<Eigen::Index>(i)) = M[ts] * n0.row(pc[i].first).transpose();
         areas(static_cast<Eigen::Index>(i)) = pc[i].second;
-        const double q = normals.col(static_cast<Eigen::Index>(i)).dot(d) + tau_solve;
-        if (q < 0) {
-          risky = true;
-          risky_weight[ts] += pc[i].second;
-        }
       }
       if (!risky) return;
       MinRotationOptions mo;
@@ -378,9 +393,9 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
 
     // Coherent: neighbours turn together, and safe tets next to risky ones follow.
     if (coherent) {
-      std::vector<Eigen::Matrix3d> blended = extra;
       parallel_for(nt, [&](int t) {
         const size_t ts = static_cast<size_t>(t);
+        blended[ts] = extra[ts];
         if (tet_feature[ts] >= 0) return;
         std::vector<std::pair<double, Eigen::Quaterniond>> items;
         double neighbour_weight = 0.0;
@@ -485,6 +500,7 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
     // that keeps every tet positive (bisection), and the run stops there.
     auto inverted = [&](const Points& P) {
       int count = 0;
+#pragma omp parallel for schedule(static) reduction(+ : count)
       for (int t = 0; t < nt; ++t) count += edge_matrix(P, domain.T.row(t)).determinant() <= 0.0;
       return count;
     };
@@ -509,13 +525,13 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
     st.risky_share = now.risky_share();
     st.risky_deficit = now.risky_deficit;
     st.energy = arap.energy(Vnew, L);
-    double ae = 0.0, piece_area = 0.0;
+    double ae = 0.0;
     for (int t = 0; t < nt; ++t) {
       ae += ae_area[static_cast<size_t>(t)];
-      for (const auto& pc : pieces[static_cast<size_t>(t)]) piece_area += pc.second;
       if (risky_weight[static_cast<size_t>(t)] > 0.0) ++st.risky_tets;
-      if (edge_matrix(Vnew, domain.T.row(t)).determinant() <= 0.0) ++st.inverted_tets;
     }
+    // Zero unless the guard cut a step whose start was already inverted.
+    st.inverted_tets = inversion_stop ? inverted(Vnew) : 0;
     st.approximation_error = piece_area > 0.0 ? ae / piece_area : 0.0;
     st.max_displacement = disp.maxCoeff();
     st.mean_displacement = disp.mean();

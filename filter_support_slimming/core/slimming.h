@@ -85,7 +85,8 @@ struct SlimmingResult {
   Surface surface;                    // the deformed mesh, same topology as the input
   OverhangReport before, after;       // measured at alpha_max
   std::vector<IterationStats> history;  // history[0] is the input, one entry per kept iteration
-  int iterations = 0;                 // iterations kept (a rolled-back one is not counted)
+  int iterations = 0;                 // the iteration the result comes from (0: the input)
+  int iterations_run = 0;             // iterations computed, including any after the best one
   std::string stop_reason;
   Eigen::VectorXd displacement;       // #V, mm
   double volume_before = 0.0, volume_after = 0.0;  // signed enclosed volume, mm³
