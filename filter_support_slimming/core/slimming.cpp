@@ -86,30 +86,45 @@ void validate(const Surface& input, const SlimmingOptions& o) {
     throw std::invalid_argument("the rigid-feature marks must have one entry per face");
 }
 
-// Face-adjacent tets (sharing a triangle), as lists in ascending order. Sorting the 4 #T face
-// keys finds the shared ones without a map.
-std::vector<std::vector<int>> tet_neighbours(const Tets& T) {
-  struct Key {
-    std::array<int, 3> v;
-    int tet;
-  };
-  std::vector<Key> keys;
-  keys.reserve(static_cast<size_t>(4 * T.rows()));
-  for (int t = 0; t < T.rows(); ++t)
-    for (int skip = 0; skip < 4; ++skip) {
-      Key k{{}, t};
-      for (int c = 0, j = 0; c < 4; ++c)
-        if (c != skip) k.v[static_cast<size_t>(j++)] = T(t, c);
-      std::sort(k.v.begin(), k.v.end());
-      keys.push_back(k);
-    }
-  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) { return a.v != b.v ? a.v < b.v : a.tet < b.tet; });
+// Face-adjacent tets (sharing a triangle) of the tets marked in `from`, and those tets as
+// neighbours of theirs, as lists in ascending order: the coherent step only ever pairs a tet that
+// holds surface faces with its neighbours. Two tets share a face when they share three vertices;
+// the candidates are the tets around one of them (CSR incidence).
+std::vector<std::vector<int>> tet_neighbours(const Tets& T, Eigen::Index vertex_count, const std::vector<bool>& from) {
+  std::vector<int> start(static_cast<size_t>(vertex_count) + 1, 0);
+  for (Eigen::Index t = 0; t < T.rows(); ++t)
+    for (int k = 0; k < 4; ++k) ++start[static_cast<size_t>(T(t, k)) + 1];
+  for (size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
+  std::vector<int> around(static_cast<size_t>(start.back())), fill(start.begin(), start.end() - 1);
+  for (int t = 0; t < static_cast<int>(T.rows()); ++t)
+    for (int k = 0; k < 4; ++k) around[static_cast<size_t>(fill[static_cast<size_t>(T(t, k))]++)] = t;
   std::vector<std::vector<int>> adj(static_cast<size_t>(T.rows()));
-  for (size_t i = 1; i < keys.size(); ++i)
-    if (keys[i].v == keys[i - 1].v) {
-      adj[static_cast<size_t>(keys[i].tet)].push_back(keys[i - 1].tet);
-      adj[static_cast<size_t>(keys[i - 1].tet)].push_back(keys[i].tet);
+  for (int t = 0; t < static_cast<int>(T.rows()); ++t) {
+    if (!from[static_cast<size_t>(t)]) continue;
+    const int v0 = T(t, 0);
+    for (int i = start[static_cast<size_t>(v0)]; i < start[static_cast<size_t>(v0) + 1]; ++i) {
+      const int u = around[static_cast<size_t>(i)];
+      if (u == t) continue;
+      int shared = 0;
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) shared += T(t, a) == T(u, b);
+      if (shared == 3) adj[static_cast<size_t>(t)].push_back(u);
     }
+    // A neighbour across the face opposite v0 does not contain v0: look around v1 for it.
+    const int v1 = T(t, 1);
+    for (int i = start[static_cast<size_t>(v1)]; i < start[static_cast<size_t>(v1) + 1]; ++i) {
+      const int u = around[static_cast<size_t>(i)];
+      if (u == t || (T.row(u).array() == v0).any()) continue;
+      int shared = 0;
+      for (int a = 1; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) shared += T(t, a) == T(u, b);
+      if (shared == 3) adj[static_cast<size_t>(t)].push_back(u);
+    }
+  }
+  for (int t = 0; t < static_cast<int>(T.rows()); ++t)  // mirror: unmarked tets learn their marked neighbours
+    if (from[static_cast<size_t>(t)])
+      for (int u : adj[static_cast<size_t>(t)])
+        if (!from[static_cast<size_t>(u)]) adj[static_cast<size_t>(u)].push_back(t);
   for (auto& a : adj) std::sort(a.begin(), a.end());
   return adj;
 }
@@ -340,7 +355,9 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
   }
   const ArapSolver& arap = *solver;
   r.solver_backend = arap.backend_name();
-  const std::vector<std::vector<int>> neighbours = coherent ? tet_neighbours(domain.T) : std::vector<std::vector<int>>{};
+  std::vector<bool> holds_faces(static_cast<size_t>(nt));
+  for (int t = 0; t < nt; ++t) holds_faces[static_cast<size_t>(t)] = !pieces[static_cast<size_t>(t)].empty();
+  const std::vector<std::vector<int>> neighbours = coherent ? tet_neighbours(domain.T, domain.V.rows(), holds_faces) : std::vector<std::vector<int>>{};
 
   // ---- the iterations -------------------------------------------------------------------------------
   Points V = domain.V;
