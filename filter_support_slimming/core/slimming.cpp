@@ -469,6 +469,7 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
     auto global_timer = std::make_unique<StageTimer>(times.global);
     Points Vnew = arap.solve(L, domain.V);
     global_timer.reset();
+    const double energy_start = arap.energy(V, L), energy_solved = arap.energy(Vnew, L);
     StageTimer measure_timer(times.measure);
     for (Eigen::Index v = 0; v < Vnew.rows(); ++v) {
       const double below = plate - Vnew.row(v).dot(d.transpose());
@@ -542,6 +543,8 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
     st.risky_share = now.risky_share();
     st.risky_deficit = now.risky_deficit;
     st.energy = arap.energy(Vnew, L);
+    st.energy_start = energy_start;
+    st.energy_solved = energy_solved;
     double ae = 0.0;
     for (int t = 0; t < nt; ++t) {
       ae += ae_area[static_cast<size_t>(t)];

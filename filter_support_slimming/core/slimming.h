@@ -73,7 +73,11 @@ struct IterationStats {
   double risky_area = 0.0;         // mm²
   double risky_share = 0.0;        // of the total area
   double risky_deficit = 0.0;      // mm², see OverhangReport::risky_deficit
-  double energy = 0.0;             // the ARAP energy of this iteration's global step
+  double energy = 0.0;             // ARAP energy of the accepted positions for this iteration's L_t
+  // The global step alone: ARAP energy for this iteration's L_t at the positions it started from,
+  // and at its solution before the plate, budget and inversion guards touched it. The solution
+  // minimises the energy, so solved <= start always.
+  double energy_start = 0.0, energy_solved = 0.0;
   double approximation_error = 0.0;  // AE: area share poorly represented by its proxy (§IV-C)
   double max_displacement = 0.0;   // mm, over surface vertices
   double mean_displacement = 0.0;  // mm

@@ -87,6 +87,23 @@ TEST(Slimming, TAndMushroomOverhangsMoveTowardsSafe) {
   }
 }
 
+TEST(Slimming, EveryGlobalStepMinimisesItsOwnEnergy) {
+  for (SlimmingMethod method : {SlimmingMethod::Paper, SlimmingMethod::Coherent}) {
+    SlimmingOptions o;
+    o.method = method;
+    o.max_deviation_pct = 0.0;  // no budget: keep every step
+    o.max_iterations = 8;
+    o.stall_tolerance = -1e300;
+    const SlimmingResult r = slim_supports(bunny(), o);
+    ASSERT_GT(r.history.size(), 1u);
+    for (size_t i = 1; i < r.history.size(); ++i) {
+      const IterationStats& st = r.history[i];
+      EXPECT_LE(st.energy_solved, st.energy_start * (1 + 1e-12) + 1e-12) << "iteration " << i;
+      EXPECT_GT(st.energy_start, 0.0);  // the local step asked for something new
+    }
+  }
+}
+
 TEST(Slimming, SafeMeshComesBackUnchanged) {
   const Surface cube = test::box({0, 0, 0}, {10, 10, 10});
   const SlimmingResult r = slim_supports(cube, {});
