@@ -3,6 +3,7 @@
 # private MeshLab prefix in build/prefix; nothing is installed into /usr):
 #   1. Overhang Analysis of the input  -> out/bunny_overhang.ply (risky faces red, selected)
 #   2. Support Slimming                -> out/bunny_slimmed.ply (still-risky faces red, selected)
+#   3. The slicer judge                -> out/eval-bunny/report.md and before_after.png
 # Open both in MeshLab to compare. Idempotent.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -34,3 +35,9 @@ echo
 echo "Results (open in MeshLab; red = needs support, blue = safe):"
 echo "  input:    $out/bunny_overhang.ply"
 echo "  slimmed:  $out/bunny_slimmed.ply"
+
+# 3. The independent judge: the bunny at 60 mm, sliced by PrusaSlicer before and after, shape
+#    metrics from MeshLab's Hausdorff filter, and a before/after picture.
+echo
+echo "The independent judge (PrusaSlicer support volume, scaled to 60 mm):"
+"$here/scripts/evaluate.sh" "$here/data/bunny.ply" --out "$out/eval-bunny" --name "sample bunny" --quiet

@@ -18,6 +18,7 @@ PACKAGES=(
   libsuitesparse-dev libopenblas0-pthread
   libtet1.5-dev
   meshlab xvfb xauth
+  prusa-slicer f3d imagemagick xdotool
 )
 # Node.js only for fetching the npm sample data; keep whatever node the machine already has.
 command -v npm >/dev/null 2>&1 || PACKAGES+=(nodejs npm)

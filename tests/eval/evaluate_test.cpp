@@ -1,0 +1,151 @@
+// tools/evaluate.sh end to end on the refined arch (whose overhang Support Slimming does reduce):
+// the slicer must need less support after slimming by more than its noise, at 45 degrees and at
+// 30 (where the slicer's threshold, measured from the horizontal, is 60), and the report must
+// hold the table and the picture.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "gcode_extrusion.h"
+#include "run_command.h"
+#include "support/shapes.h"
+#include "vcg_adapters/mesh_io.h"
+
+using namespace slim;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Support differences under about 2% are slicer noise (a 0.1% change of scale moves support by
+// ~1.2%); a real saving must be clearly larger.
+constexpr double kSlicerNoise = 0.02;
+
+// Kept after the test (overwritten by the next run): the reports are worth a look.
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(SLIM_EVAL_OUT_DIR) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::map<std::string, double> read_metrics(const fs::path& file) {
+  std::map<std::string, double> m;
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t eq = line.find('=');
+    if (eq != std::string::npos) m[line.substr(0, eq)] = std::stod(line.substr(eq + 1));
+  }
+  return m;
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+eval::GcodeExtrusion read_gcode(const fs::path& file) {
+  std::ifstream in(file);
+  return eval::measure_extrusion(in);
+}
+
+test::CommandRun evaluate(const std::string& args) {
+  return test::run_command(test::shell_quote(SLIM_SOURCE_DIR "/tools/evaluate.sh") + " --build " +
+                           test::shell_quote(SLIM_BINARY_DIR) + " --quiet " + args);
+}
+
+// Writes the arch refined once (as a remeshed part would be) and judges it at `angle`.
+struct Judged {
+  test::CommandRun run;
+  fs::path out;
+  std::map<std::string, double> metrics;
+};
+Judged judge_arch(double angle) {
+  Judged j;
+  const fs::path dir = scratch("arch_" + std::to_string(static_cast<int>(angle)));
+  const fs::path mesh = dir / "arch.ply";
+  vcgx::save_surface(mesh.string(), test::refined(test::arch(), 1));
+  j.out = dir / "report";
+  j.run = evaluate(test::shell_quote(mesh.string()) + " --angle " + std::to_string(angle) + " --out " +
+                   test::shell_quote(j.out.string()));
+  j.metrics = read_metrics(j.out / "metrics.txt");
+  return j;
+}
+
+void expect_less_support_than_noise(const Judged& j) {
+  const double before = j.metrics.at("support_mm3_before"), after = j.metrics.at("support_mm3_after");
+  EXPECT_GT(before, 0.0);
+  EXPECT_LT(after, (1.0 - kSlicerNoise) * before) << "support " << before << " -> " << after << " mm^3";
+  EXPECT_LT(j.metrics.at("risky_area_after"), j.metrics.at("risky_area_before"));
+  // Our sum of all extrusion is the slicer's own "filament used" (printed to 0.01 mm).
+  EXPECT_LT(std::abs(j.metrics.at("total_vs_slicer_pct_before")), 0.01);
+  EXPECT_LT(std::abs(j.metrics.at("total_vs_slicer_pct_after")), 0.01);
+}
+
+}  // namespace
+
+TEST(Evaluate, SlimmedArchNeedsLessSupportInPrusaSlicer) {
+  const Judged j = judge_arch(45.0);
+  ASSERT_EQ(j.run.exit_code, 0) << j.run.output;
+  expect_less_support_than_noise(j);
+
+  // The support figure is the G-code's support sections times the filament's cross-section.
+  const eval::GcodeExtrusion g = read_gcode(j.out / "slimmed.gcode");
+  EXPECT_NEAR(g.support_mm() * eval::filament_area(*g.filament_diameter()), j.metrics.at("support_mm3_after"),
+              1e-4 * j.metrics.at("support_mm3_after"));
+  EXPECT_EQ(g.settings.at("support_material_threshold"), "45");
+  EXPECT_EQ(g.settings.at("layer_height"), "0.2");
+
+  // Shape: every sample moves with its triangle, so the Hausdorff distance MeshLab measures
+  // cannot exceed the largest vertex displacement, which the 5% budget bounds.
+  const double diag = j.metrics.at("bbox_diagonal_mm");
+  EXPECT_GT(j.metrics.at("hausdorff_mm"), 0.0);
+  EXPECT_LE(j.metrics.at("hausdorff_mm"), j.metrics.at("max_displacement_mm") * 1.001 + 1e-4);
+  EXPECT_LE(j.metrics.at("max_displacement_mm"), 0.05 * diag * 1.001);
+  EXPECT_GT(j.metrics.at("mean_distance_mm"), 0.0);
+  EXPECT_LT(j.metrics.at("mean_distance_mm"), j.metrics.at("hausdorff_mm"));
+  EXPECT_NEAR(j.metrics.at("size_mm"), 60.0, 1e-9);
+
+  // The report holds the table, the noise caveat and the picture.
+  const std::string report = read_text(j.out / "report.md");
+  EXPECT_NE(report.find("| support material (PrusaSlicer) |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| Hausdorff distance (symmetric) |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| iterations, optimizer time |"), std::string::npos) << report;
+  EXPECT_NE(report.find("slicer noise"), std::string::npos) << report;
+  EXPECT_NE(report.find("](before_after.png)"), std::string::npos) << report;
+  const std::string png = read_text(j.out / "before_after.png");
+  ASSERT_GT(png.size(), 10000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+TEST(Evaluate, ThirtyDegreesReachesTheSlicerAsSixtyFromTheHorizontal) {
+  const Judged j = judge_arch(30.0);
+  ASSERT_EQ(j.run.exit_code, 0) << j.run.output;
+  EXPECT_EQ(read_gcode(j.out / "input.gcode").settings.at("support_material_threshold"), "60");
+  EXPECT_EQ(read_gcode(j.out / "slimmed.gcode").settings.at("support_material_threshold"), "60");
+  expect_less_support_than_noise(j);
+}
+
+TEST(Evaluate, BadInputFailsWithAOneLineReason) {
+  const fs::path dir = scratch("bad_input");
+  const fs::path junk = dir / "junk.stl";
+  std::ofstream(junk) << "this is not a mesh\n";
+  const fs::path arch = dir / "arch_small.ply";
+  vcgx::save_surface(arch.string(), test::arch());
+  for (const std::string& args :
+       {test::shell_quote((dir / "missing.stl").string()), test::shell_quote(junk.string()),
+        test::shell_quote(arch.string()) + " --angle 90", test::shell_quote(arch.string()) + " --size ten",
+        test::shell_quote(arch.string()) + " --frobnicate 1", std::string()}) {
+    const test::CommandRun r = evaluate(args + " --out " + test::shell_quote((dir / "bad").string()));
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(r.output.rfind("evaluate: ", 0), 0u) << args << ": " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
+  }
+  fs::remove_all(dir);
+}

@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# Drives the real MeshLab GUI under Xvfb the way a user would:
+#   open MESH, Filters -> Smoothing, Fairing and Deformation -> Support Slimming, Apply, Close,
+#   then File -> Export Mesh As (Ctrl+Shift+E) on the current layer.
+# Checks on the way: the filter's dialog is titled "Support Slimming"; the filter logs its result;
+# the export dialog is titled 'Save "<name> slimmed" Layer', i.e. the current layer is the new one.
+# Keeps OUT/dialog.png, OUT/meshlab_gui.png (both layers listed), OUT/layer.ply (the exported new
+# layer) and OUT/meshlab.log; OUT/failure.png when a step fails. Every wait has a timeout.
+#
+#   gui_check.sh PREFIX MESH OUT SMOOTHING_INDEX
+# PREFIX: a private MeshLab prefix (scripts/make_prefix.sh) whose plugins include ours.
+# SMOOTHING_INDEX: the filter's place (0-based) in the Smoothing submenu; MeshLab lists a
+# submenu's filters in the order of their names over all plugins (gui_test.cpp works it out).
+set -euo pipefail
+if [ -z "${SLIM_GUI_UNDER_XVFB:-}" ]; then  # run ourselves again inside a fresh X server
+  export SLIM_GUI_UNDER_XVFB=1
+  exec xvfb-run -a -n $((100 + RANDOM % 800)) -s "-screen 0 1280x1024x24" "$0" "$@"
+fi
+[ $# -eq 4 ] || { echo "usage: gui_check.sh PREFIX MESH OUT SMOOTHING_INDEX" >&2; exit 2; }
+prefix="$1" mesh="$2" out="$3" index="$4"
+for tool in xdotool import; do
+  command -v "$tool" >/dev/null 2>&1 || { echo "gui_check: $tool is not installed (scripts/setup.sh)" >&2; exit 1; }
+done
+[ -x "$prefix/bin/meshlab" ] || { echo "gui_check: no meshlab in $prefix/bin" >&2; exit 1; }
+mkdir -p "$out"
+rm -f "$out"/*.png "$out/layer.ply" "$out/meshlab.log"
+log="$out/meshlab.log"
+home="$(mktemp -d)"
+export HOME="$home" XDG_CONFIG_HOME="$home/.config"  # MeshLab's settings: never the user's
+unset QT_QPA_PLATFORM  # a real window on the Xvfb display (offscreen hangs on any error dialog)
+
+fail() {
+  echo "gui_check: $*" >&2
+  import -window root "$out/failure.png" 2>/dev/null || true
+  exit 1
+}
+# wait_window REGEX SECONDS: prints the id of the first visible window whose name matches.
+wait_window() {
+  local id tries=$((2 * $2))
+  while [ "$tries" -gt 0 ]; do
+    id="$(xdotool search --onlyvisible --name "$1" 2>/dev/null | head -1 || true)"
+    if [ -n "$id" ]; then echo "$id"; return 0; fi
+    sleep 0.5; tries=$((tries - 1))
+  done
+  return 1
+}
+# wait_log REGEX SECONDS: until MeshLab's log (its stderr) has a matching line.
+wait_log() {
+  local tries=$((2 * $2))
+  while [ "$tries" -gt 0 ]; do
+    grep -qE "$1" "$log" && return 0
+    kill -0 "$meshlab" 2>/dev/null || return 1  # MeshLab is gone
+    sleep 0.5; tries=$((tries - 1))
+  done
+  return 1
+}
+# press_button WINDOW COLUMN: clicks the bottom row of a filter dialog, which holds two buttons:
+# COLUMN 0 is Close, 1 is Apply (the left and right halves).
+press_button() {
+  # shellcheck disable=SC2034  # getwindowgeometry --shell sets all six
+  local WIDTH HEIGHT X Y SCREEN WINDOW
+  eval "$(xdotool getwindowgeometry --shell "$1")"
+  xdotool mousemove --window "$1" $((WIDTH * (1 + 2 * $2) / 4)) $((HEIGHT - 24)) click 1
+}
+keys() {  # KEY COUNT: press KEY COUNT times
+  local i
+  for ((i = 0; i < $2; i++)); do xdotool key "$1"; sleep 0.05; done
+}
+
+"$prefix/bin/meshlab" "$mesh" >"$log" 2>&1 &
+meshlab=$!
+trap 'kill "$meshlab" 2>/dev/null || true; wait "$meshlab" 2>/dev/null || true; rm -rf "$home"' EXIT
+
+main="$(wait_window '^MeshLab [0-9.]+ ' 60)" || fail "no MeshLab window within 60 s"
+wait_log 'All files opened' 60 || fail "MeshLab did not open $mesh (see $log)"
+sleep 1
+
+# Filters (Alt+L) -> the 7th submenu below "Show current filter script" (MeshLab 2020.09's fixed
+# layout: Selection, Cleaning, Create, Remeshing, Polygonal, Color, Smoothing) -> the filter.
+xdotool windowfocus --sync "$main"
+xdotool key alt+l
+sleep 0.5
+keys Down 7
+xdotool key Right
+sleep 0.5
+keys Down "$index"
+xdotool key Return
+dialog="$(wait_window '^Support Slimming$' 20)" || fail "Filters -> Smoothing, Fairing and Deformation -> item $index did not open the Support Slimming dialog"
+sleep 0.5
+import -window root "$out/dialog.png"
+
+press_button "$dialog" 1  # Apply, with the dialog's defaults
+wait_log 'LOG: [0-9]+ Support Slimming: risky area' 120 || fail "the filter logged no result within 120 s (see $log)"
+wait_log 'Applied filter Support Slimming' 30 || fail "MeshLab did not finish the filter (see $log)"
+press_button "$dialog" 0  # Close
+sleep 0.5
+
+# Export the current layer: its dialog names the layer, which must be the filter's new one.
+xdotool windowfocus --sync "$main"
+xdotool key ctrl+shift+e
+save="$(wait_window '^Save ".* slimmed" Layer$' 20)" || fail "Export Mesh As did not offer a '<name> slimmed' layer: no new current layer"
+echo "export dialog: $(xdotool getwindowname "$save")"
+xdotool windowfocus --sync "$save"
+xdotool type --delay 10 "$out/layer.ply"
+xdotool key Return
+options="$(wait_window '^Choose Saving Options' 20)" || fail "no saving options dialog"
+xdotool windowfocus --sync "$options"
+xdotool key Return
+wait_log "Saved Mesh .*layer\.ply" 30 || fail "MeshLab did not save the layer (see $log)"
+sleep 1
+import -window root "$out/meshlab_gui.png"
+grep -E 'LOG: [0-9]+ Support Slimming' "$log"
+echo "gui_check: ok"

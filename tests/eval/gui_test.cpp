@@ -1,0 +1,82 @@
+// The real MeshLab GUI (the private prefix's copy, so it loads this build's plugin), driven under
+// Xvfb with xdotool by gui_check.sh: Filters -> Smoothing, Fairing and Deformation -> Support
+// Slimming -> Apply must leave a new "<name> slimmed" layer whose mesh is the deformed input.
+// Label gui; exclude it with ctest -LE gui.
+#include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QDir>
+
+#include <filesystem>
+
+#include <common/pluginmanager.h>
+
+#include "core/overhang.h"
+#include "run_command.h"
+#include "support/shapes.h"
+#include "vcg_adapters/mesh_io.h"
+
+using namespace slim;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The filter's place in Filters -> Smoothing, Fairing and Deformation, found the way MeshLab
+// builds that menu: every filter of every plugin in the prefix, by name (MeshLab's own
+// PluginManager loads them), the Smoothing-class ones in that order. -1 when absent.
+int smoothing_menu_index(const QString& filter) {
+  PluginManager pm;
+  RichParameterList globals;
+  pm.loadPlugins(globals, QDir(SLIM_MESHLAB_PREFIX "/lib/x86_64-linux-gnu/meshlab/plugins"));
+  int index = 0;
+  for (auto it = pm.stringFilterMap.begin(); it != pm.stringFilterMap.end(); ++it) {
+    QAction* action = it.value()->AC(it.key());
+    if (!(it.value()->getClass(action) & MeshFilterInterface::Smoothing)) continue;
+    if (it.key() == filter) return index;
+    ++index;
+  }
+  return -1;
+}
+
+}  // namespace
+
+TEST(MeshLabGui, SupportSlimmingFromTheFiltersMenuAddsASlimmedLayer) {
+  const std::string mesh = test::sample_bunny_path();
+  ASSERT_TRUE(fs::exists(mesh)) << "run scripts/setup.sh first";
+  const int index = smoothing_menu_index("Support Slimming");
+  ASSERT_GE(index, 0) << "the prefix's plugins offer no Smoothing-class 'Support Slimming' filter";
+
+  // Kept after the test: the screenshots are its record.
+  const fs::path out = fs::path(SLIM_GUI_OUT_DIR);
+  const test::CommandRun r =
+      test::run_command("timeout 300 " + test::shell_quote(SLIM_SOURCE_DIR "/tests/eval/gui_check.sh") + " " +
+                        test::shell_quote(SLIM_MESHLAB_PREFIX) + " " + test::shell_quote(mesh) + " " +
+                        test::shell_quote(out.string()) + " " + std::to_string(index));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string layer_name = fs::path(mesh).filename().string() + " slimmed";
+  EXPECT_NE(r.output.find("export dialog: Save \"" + layer_name + "\" Layer"), std::string::npos) << r.output;
+  EXPECT_GT(fs::file_size(out / "dialog.png"), 10000u);
+  EXPECT_GT(fs::file_size(out / "meshlab_gui.png"), 10000u);
+
+  // The exported layer is the input deformed: same mesh, vertices moved, fewer risky faces.
+  const Surface input = test::load_mesh(mesh);
+  vcgx::FaceExtras extras;
+  const Surface layer = vcgx::load_surface((out / "layer.ply").string(), &extras);
+  ASSERT_EQ(layer.V.rows(), input.V.rows());
+  ASSERT_EQ(layer.F, input.F);
+  const double diag = (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm();
+  const double moved = (layer.V - input.V).rowwise().norm().maxCoeff();
+  EXPECT_GT(moved, 1e-3 * diag);
+  EXPECT_LE(moved, 0.05 * diag * 1.001);  // the dialog's default deviation budget: 5%
+  ASSERT_EQ(extras.quality.size(), layer.F.rows()) << "the layer carries the filter's face quality";
+  OverhangOptions o;
+  o.plate_tolerance = 1e-3 * diag;  // the dialog's default: 0.1% of the diagonal
+  EXPECT_LT(analyse_overhang(layer, o).risky_area, 0.95 * analyse_overhang(input, o).risky_area);
+}
+
+int main(int argc, char** argv) {
+  qputenv("QT_QPA_PLATFORM", "offscreen");  // this process only lists plugins; the GUI runs under Xvfb
+  QApplication app(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
