@@ -159,8 +159,13 @@ int main(int argc, char** argv) {
     std::printf("  AE              %.2f%%   inverted tets %d\n", 100 * last.approximation_error, last.inverted_tets);
     std::printf("  domain          %d vertices, %d tets; solver %s\n", r.domain_vertices, r.domain_tets,
                 r.solver_backend.c_str());
+    if (r.inside_out)
+      std::printf("  note            the input is inside out (every normal points inwards): it was computed turned\n"
+                  "                  over, and %s keeps the input's face orientation\n", out.c_str());
   } catch (const std::exception& e) {
     die(e.what());
+  } catch (...) {
+    die("unexpected internal error (not a std::exception)");
   }
   return 0;
 }

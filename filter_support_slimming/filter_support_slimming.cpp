@@ -37,6 +37,11 @@ slim::SlimmingOptions slimmingOptions(const RichParameterList& par) {
   return o;
 }
 
+// Logged by both filters when the mesh is inside out (slim::inside_out).
+const char* const kInsideOutNotice =
+    "the mesh is inside out (closed, with every normal pointing inwards): it was analysed with its faces turned "
+    "over; to fix the layer itself use Filters > Normals, Curvatures and Orientation > Invert Faces Orientation";
+
 void addPrintParameters(RichParameterList& par, float diag) {
   par.addParam(RichPoint3f("printDirection", vcg::Point3f(0, 0, 1), "Print direction",
                            "The direction the part grows in while printing (the build plate's normal). "
@@ -157,6 +162,34 @@ void FilterSupportSlimming::initParameterSet(QAction* action, MeshModel& m, Rich
   }
 }
 
+QString FilterSupportSlimming::parameterProblem(QAction* action, MeshDocument& md, const RichParameterList& par) {
+  // A hand-written .mlx can drop a parameter, give it another type or an enum index out of range.
+  // MeshLab's typed getters assert (abort the host) on a wrong type and throw on a missing name,
+  // so everything is compared with our own list before any value is read.
+  if (md.mm() == nullptr) return {};
+  RichParameterList expected;
+  initParameterSet(action, *md.mm(), expected);
+  for (const RichParameter& want : expected) {
+    if (!par.hasParameter(want.name()))
+      return QString("the parameter '%1' (%2) is missing; a script must list every parameter of the filter")
+          .arg(want.name(), want.fieldDescription());
+    const RichParameter& got = par.getParameterByName(want.name());
+    if (got.stringType() != want.stringType())
+      return QString("the parameter '%1' (%2) is a %3, but it must be a %4")
+          .arg(want.name(), want.fieldDescription(), got.stringType(), want.stringType());
+    if (want.value().isEnum()) {
+      const int count = static_cast<const RichEnum&>(want).enumvalues.size();
+      if (got.value().getEnum() < 0 || got.value().getEnum() >= count)
+        return QString("the parameter '%1' (%2) is %3, but it must be one of 0..%4 (%5)")
+            .arg(want.name(), want.fieldDescription())
+            .arg(got.value().getEnum())
+            .arg(count - 1)
+            .arg(static_cast<const RichEnum&>(want).enumvalues.join(", "));
+    }
+  }
+  return {};
+}
+
 bool FilterSupportSlimming::fail(const QString& reason) {
   errorMessage = reason;
   Log(GLLogStream::WARNING, "%s", qUtf8Printable(reason));
@@ -167,6 +200,8 @@ bool FilterSupportSlimming::applyFilter(QAction* action, MeshDocument& md, const
                                         vcg::CallBackPos* cb) {
   // Nothing may escape into MeshLab: an exception here would take the user's session down.
   try {
+    const QString problem = parameterProblem(action, md, par);
+    if (!problem.isEmpty()) return fail(QString("%1: %2").arg(action->text(), problem));
     switch (ID(action)) {
       case FP_OVERHANG_ANALYSIS: return applyOverhangAnalysis(md, par);
       case FP_SUPPORT_SLIMMING: return applySupportSlimming(md, par, cb);
@@ -187,7 +222,12 @@ bool FilterSupportSlimming::applyOverhangAnalysis(MeshDocument& md, const RichPa
   if (mm->cm.fn == 0) return fail("Overhang Analysis: the mesh has no faces; it needs a triangle mesh, not a point cloud");
 
   const slim::Surface surface = slim::vcgx::to_surface(mm->cm);
-  const slim::OverhangReport report = slim::analyse_overhang(surface, overhangOptions(par));
+  // The rule reads the outside from the normals (see slimming.h): an inside-out mesh is analysed
+  // turned over; faces that disagree are analysed as they are, with a warning.
+  const slim::EdgeTopology edges = slim::edge_topology(surface);
+  const bool insideOut = slim::inside_out(surface, edges);
+  const slim::OverhangReport report =
+      slim::analyse_overhang(insideOut ? slim::flipped(surface) : surface, overhangOptions(par));
 
   // Only now that the analysis succeeded is the layer touched.
   const bool colorize = par.getBool("colorize");
@@ -199,6 +239,13 @@ bool FilterSupportSlimming::applyOverhangAnalysis(MeshDocument& md, const RichPa
       "%lld faces rest on the build plate",
       static_cast<long long>(report.risky_count), mm->cm.fn, report.risky_area, 100.0 * report.risky_share(),
       report.total_area, static_cast<long long>(report.plate_count));
+  if (insideOut) Log(GLLogStream::WARNING, "Overhang Analysis: %s", kInsideOutNotice);
+  if (edges.flipped_edges > 0)
+    Log(GLLogStream::WARNING,
+        "Overhang Analysis: the faces are not consistently oriented (%s; %lld such edges), so some faces may be "
+        "coloured as risky or safe wrongly; fix it with Filters > Normals, Curvatures and Orientation > Re-Orient "
+        "all faces coherently",
+        edges.first_flipped.c_str(), static_cast<long long>(edges.flipped_edges));
   return true;
 }
 
@@ -250,5 +297,6 @@ bool FilterSupportSlimming::applySupportSlimming(MeshDocument& md, const RichPar
       last.max_displacement, last.mean_displacement, r.volume_before, r.volume_after,
       r.volume_before != 0 ? 100.0 * (r.volume_after / r.volume_before - 1.0) : 0.0,
       100.0 * last.approximation_error, last.inverted_tets);
+  if (r.inside_out) Log(GLLogStream::WARNING, "Support Slimming: %s", kInsideOutNotice);
   return true;
 }

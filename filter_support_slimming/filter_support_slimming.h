@@ -32,6 +32,9 @@ class FilterSupportSlimming : public QObject, public MeshFilterInterface {
  private:
   bool applyOverhangAnalysis(MeshDocument& md, const RichParameterList& par);
   bool applySupportSlimming(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb);
+  // What is wrong with the parameters a host passed, compared with initParameterSet's (missing,
+  // another type, an enum index out of range); empty when nothing is.
+  QString parameterProblem(QAction* action, MeshDocument& md, const RichParameterList& par);
   // Puts the reason in the filter's error message and in the log, then returns false: with only
   // errorMessage, meshlabserver prints nothing but "Problem with filter".
   bool fail(const QString& reason);

@@ -19,6 +19,7 @@ PACKAGES=(
   libtet1.5-dev
   meshlab xvfb xauth
   prusa-slicer f3d imagemagick xdotool
+  clang libclang-rt-14-dev libomp-14-dev
 )
 # Node.js only for fetching the npm sample data; keep whatever node the machine already has.
 command -v npm >/dev/null 2>&1 || PACKAGES+=(nodejs npm)

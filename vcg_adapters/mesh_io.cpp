@@ -1,7 +1,11 @@
 #include "vcg_adapters/mesh_io.h"
 
 #include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 
@@ -69,6 +73,45 @@ Surface load_obj(const std::string& path) {
   return s;
 }
 
+// VCG 2020.09's STL reader runs strlen over the 80-byte binary header, which need not hold a zero
+// byte (VCG's own exporter fills it with spaces): a stack over-read on nearly every binary STL,
+// which AddressSanitizer reports. It also dereferences a null FILE* for a missing file. STL is
+// simple enough to read here: binary when the size matches the triangle count, else ASCII (every
+// "vertex x y z"; three make a triangle). Each triangle gets its own three corners, as in the file.
+void load_stl(const std::string& path, IoMesh& m) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path + ": cannot open the file");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<vcg::Point3d> corners;
+  std::uint32_t count = 0;
+  if (bytes.size() >= 84) std::memcpy(&count, bytes.data() + 80, sizeof count);
+  if (bytes.size() >= 84 && bytes.size() == 84 + 50 * static_cast<std::uint64_t>(count)) {
+    for (std::uint32_t t = 0; t < count; ++t) {
+      float xyz[12];  // the facet normal, then three corners; the 2-byte attribute is ignored
+      std::memcpy(xyz, bytes.data() + 84 + 50 * static_cast<size_t>(t), sizeof xyz);
+      for (int k = 1; k <= 3; ++k) corners.emplace_back(xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]);
+    }
+  } else {
+    std::istringstream text(bytes);
+    std::string token;
+    while (text >> token) {
+      if (token != "vertex") continue;
+      double x, y, z;
+      if (!(text >> x >> y >> z)) throw std::runtime_error("cannot read " + path + ": a vertex without three numbers");
+      corners.emplace_back(x, y, z);
+    }
+    if (corners.empty() || corners.size() % 3 != 0)
+      throw std::runtime_error("cannot read " + path +
+                               ": not an STL file (a binary one's size matches its triangle count, an ASCII one "
+                               "lists three vertices per facet)");
+  }
+  auto vi = vcg::tri::Allocator<IoMesh>::AddVertices(m, corners.size());
+  for (const vcg::Point3d& p : corners) (vi++)->P() = p;
+  auto fi = vcg::tri::Allocator<IoMesh>::AddFaces(m, corners.size() / 3);
+  for (size_t f = 0; f < corners.size() / 3; ++f, ++fi)
+    for (int k = 0; k < 3; ++k) fi->V(k) = &m.vert[3 * f + static_cast<size_t>(k)];
+}
+
 bool has_extension(const std::string& path, const std::string& ext) {
   if (path.size() < ext.size()) return false;
   std::string tail = path.substr(path.size() - ext.size());
@@ -85,12 +128,22 @@ Surface load_surface(const std::string& path, FaceExtras* extras) {
   }
   IoMesh m;
   int mask = 0;
-  const int err = vcg::tri::io::Importer<IoMesh>::Open(m, path.c_str(), mask);
-  if (err != 0 && vcg::tri::io::Importer<IoMesh>::ErrorCritical(err))
-    throw std::runtime_error("cannot read " + path + ": " + vcg::tri::io::Importer<IoMesh>::ErrorMsg(err));
-  // STL stores each triangle's corners separately; weld them so the surface is connected.
-  vcg::tri::Clean<IoMesh>::RemoveDuplicateVertex(m);
-  vcg::tri::Allocator<IoMesh>::CompactEveryVector(m);
+  if (has_extension(path, ".stl")) {
+    load_stl(path, m);
+  } else {
+    const int err = vcg::tri::io::Importer<IoMesh>::Open(m, path.c_str(), mask);
+    if (err != 0 && vcg::tri::io::Importer<IoMesh>::ErrorCritical(err))
+      throw std::runtime_error("cannot read " + path + ": " + vcg::tri::io::Importer<IoMesh>::ErrorMsg(err));
+  }
+  // STL stores each triangle's corners separately; weld them so the surface is connected. Not
+  // with a NaN coordinate: the weld sorts by position, and NaN breaks the ordering std::sort
+  // relies on (undefined behaviour); the core then refuses the file, naming the vertex.
+  bool finite = true;
+  for (const auto& v : m.vert) finite = finite && std::isfinite(v.cP()[0] + v.cP()[1] + v.cP()[2]);
+  if (finite) {
+    vcg::tri::Clean<IoMesh>::RemoveDuplicateVertex(m);
+    vcg::tri::Allocator<IoMesh>::CompactEveryVector(m);
+  }
   if (extras) {
     *extras = FaceExtras{};
     if (mask & vcg::tri::io::Mask::IOM_FACEQUALITY) {

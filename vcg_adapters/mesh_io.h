@@ -1,5 +1,6 @@
 // Mesh files <-> slim::Surface through VCG's importers and exporters (PLY, STL, OBJ, OFF), for
-// the CLI and the tests. The plugin does not use this: MeshLab does its own IO.
+// the CLI and the tests; OBJ and STL are read here instead (VCG 2020.09 drops OBJ faces and
+// over-reads binary STL headers). The plugin does not use this: MeshLab does its own IO.
 #pragma once
 
 #include <string>

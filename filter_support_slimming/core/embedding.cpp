@@ -372,11 +372,21 @@ void face_pieces(const Surface& s, const Locator& loc, const Embedding& e, Eigen
     if (out.size() > first && piece > out[largest].area) largest = out.size();
     out.push_back({face, t, piece});
   }
-  if (out.size() > first) out[largest].area += dropped;  // keeps the sum equal to the area
-  if (covered < (1.0 - 1e-6) * area)
+  // Clipping is exact only to rounding: a clipped corner can move by about eps times the size of
+  // the coordinates, so a needle face (a CAD sliver 1e-12 mm wide, or one vertex 1e30 mm away)
+  // loses area that has nothing to do with the domain. Only a shortfall beyond that rounding
+  // means "outside"; a smaller one goes to the largest piece, so the pieces sum to the area.
+  const double reach = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), c.cwiseAbs().maxCoeff()});
+  const double longest = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
+  const double rounding = 64.0 * std::numeric_limits<double>::epsilon() * reach * longest * loc.area_scale;
+  if (covered < (1.0 - 1e-6) * area - rounding) {
     error.report(f, ("face " + std::to_string(f) + " lies partly outside the tet domain (" +
                      std::to_string(100.0 * covered / area) + "% of its area inside)")
                         .c_str());
+    return;
+  }
+  if (out.size() == first) out.push_back({face, e.vertex_tet(v[0]), 0.0});  // all of it lost to rounding
+  out[largest].area += dropped + std::max(0.0, area - covered);  // keeps the sum equal to the area
 }
 
 Embedding embed(const Surface& s, const Tets& T, const Locator& loc, const EmbeddingOptions& o) {

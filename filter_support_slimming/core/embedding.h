@@ -26,8 +26,10 @@
 //   them would see the face. A face lying in a plane shared by two tets goes to one of them: the
 //   one on the face's back side (inside the solid for an outward-oriented mesh). Pieces below
 //   1e-12 of the face's area (a tet touching the face along an edge: rounding noise) are
-//   dropped and their area given to the face's largest piece. A zero-area face is one piece of
-//   area 0 in its first vertex's tet. The mesh's topology never changes.
+//   dropped and their area given to the face's largest piece, and so is area that clipping loses
+//   to rounding (a needle face: up to about 64 eps x its longest edge x the size of the
+//   coordinates, beyond the 1e-6 share allowed anyway; more counts as outside the domain). A
+//   zero-area face is one piece of area 0 in its first vertex's tet. The topology never changes.
 //
 // embedded_positions(embedding, domain_V, surface_V) rebuilds the surface from deformed domain
 // vertices (#DV by 3 -> #V by 3): one 4-term sum per vertex, meant to run every iteration.

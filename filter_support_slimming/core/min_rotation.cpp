@@ -49,7 +49,11 @@ Eigen::Vector3d tie_direction(const Eigen::Vector3d& d, const Eigen::Vector3d& t
   return Eigen::Vector3d::UnitZ();  // unreachable for a unit d: X and Y cannot both be parallel to it
 }
 
-// The unit normals that constrain anything: zero columns (zero-area faces) dropped.
+// The unit normals that constrain anything: zero columns (zero-area faces) dropped, and exact
+// repeats of an earlier column too. A repeat is the same constraint; thousands of them (the
+// pieces of a flat face, a rigid feature on a CAD part) would push the search onto its O(n²)
+// path for nothing (a whole selected T took 9 s). The first of each stays where it was, so the
+// order, and with it every tie, is the same as without the repeats.
 Eigen::Matrix3Xd nonzero_unit_columns(const Eigen::Matrix3Xd& normals) {
   Eigen::Matrix3Xd unit(3, normals.cols());
   Eigen::Index count = 0;
@@ -57,7 +61,16 @@ Eigen::Matrix3Xd nonzero_unit_columns(const Eigen::Matrix3Xd& normals) {
     const double length = normals.col(i).norm();
     if (length > 0.0) unit.col(count++) = normals.col(i) / length;
   }
-  unit.conservativeResize(3, count);
+  std::vector<std::pair<std::array<double, 3>, Eigen::Index>> order(static_cast<size_t>(count));
+  for (Eigen::Index i = 0; i < count; ++i) order[static_cast<size_t>(i)] = {{unit(0, i), unit(1, i), unit(2, i)}, i};
+  std::sort(order.begin(), order.end());
+  std::vector<bool> repeat(static_cast<size_t>(count), false);
+  for (size_t k = 1; k < order.size(); ++k)
+    if (order[k].first == order[k - 1].first) repeat[static_cast<size_t>(order[k].second)] = true;
+  Eigen::Index kept = 0;
+  for (Eigen::Index i = 0; i < count; ++i)
+    if (!repeat[static_cast<size_t>(i)]) unit.col(kept++) = unit.col(i);
+  unit.conservativeResize(3, kept);
   return unit;
 }
 

@@ -5,6 +5,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <map>
 #include <memory>
@@ -17,6 +18,7 @@
 
 #include "core/arap.h"
 #include "core/embedding.h"
+#include "core/parallel_for.h"
 #include "core/polar.h"
 #include "core/proxy_rotation.h"
 #include "core/tetgen_domain.h"
@@ -165,28 +167,6 @@ Eigen::Matrix3d average_rotation(const std::vector<std::pair<double, Eigen::Quat
   return q.toRotationMatrix();
 }
 
-// Runs body(t) for t in [0, n) in parallel. The exception of the lowest failing t is rethrown
-// after the loop, so nothing escapes the OpenMP region (that would terminate MeshLab) and the
-// reported error does not depend on the thread count.
-template <class Body>
-void parallel_for(int n, Body&& body) {
-  int first_failure = n;
-  std::exception_ptr error;
-#pragma omp parallel for schedule(static)
-  for (int t = 0; t < n; ++t) {
-    try {
-      body(t);
-    } catch (...) {
-#pragma omp critical(slim_parallel_for_error)
-      if (t < first_failure) {
-        first_failure = t;
-        error = std::current_exception();
-      }
-    }
-  }
-  if (error) std::rethrow_exception(error);
-}
-
 class ThreadScope {
  public:
   explicit ThreadScope(int threads) {
@@ -207,16 +187,31 @@ class ThreadScope {
   int previous_ = 1;
 };
 
-}  // namespace
+// Peak memory of the optimizer for a domain of `tets` tets and `vertices` vertices, in bytes.
+// Measured (peak RSS of one iteration on solid cubes, 260k to 2M tets, CHOLMOD): about 650 bytes
+// per tet (rest inverses, L, M and the extra rotations, face pieces, ARAP's rest shapes and
+// incidence) plus the Cholesky factor, whose fill on a 3D grid grows like #DV^(4/3) (about 90
+// bytes each). Rounded up, so the guard errs on the side of refusing.
+double optimizer_bytes(Eigen::Index tets, Eigen::Index vertices) {
+  return 700.0 * static_cast<double>(tets) + 100.0 * std::pow(static_cast<double>(vertices), 4.0 / 3.0);
+}
 
-SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
+std::string gigabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g GB", bytes / 1e9);
+  return text;
+}
+
+// The run itself, on a surface whose normals point out of the part.
+SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  validate(input, o);
   ThreadScope threads(o.threads);
   const Eigen::Vector3d d = unit_print_direction(o.print_direction);
   const double tau_solve = std::sin(std::max(0.0, o.alpha_max_deg - o.margin_deg) * M_PI / 180.0);
   const double diag = (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm();
-  if (!(diag > 0.0)) throw std::invalid_argument("the mesh has zero extent");
+  if (!(diag > 0.0))
+    throw std::invalid_argument("the mesh has zero extent (all its vertices coincide), so there is no shape to "
+                                "reshape; check the file and its units");
   OverhangOptions measure;
   measure.print_direction = d;
   measure.alpha_max_deg = o.alpha_max_deg;
@@ -254,11 +249,13 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
   if (o.domain == DomainKind::Voxel) {
     VoxelDomainOptions vo;
     vo.resolution = o.resolution;
+    if (o.max_memory_bytes > 0.0) vo.max_bytes = std::min(vo.max_bytes, o.max_memory_bytes);
     VoxelDomain vd;
     {
       StageTimer timer(times.domain);
       vd = voxel_domain(input, d, vo);
     }
+    report(0.02, "embedding the surface");
     {
       StageTimer timer(times.embedding);
       emb = embed_surface(input, vd);
@@ -266,11 +263,23 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
     domain = std::move(vd.mesh);
     on_plate = std::move(vd.on_plate);
   } else {
+    // TetGen meshes only the vertices that faces use (tetgen_domain.h): a stray vertex could not
+    // be embedded, so say so now rather than "outside the domain" after TetGen has run.
+    std::vector<bool> used(static_cast<size_t>(input.V.rows()), false);
+    for (Eigen::Index f = 0; f < input.F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) used[static_cast<size_t>(input.F(f, k))] = true;
+    const auto stray = std::find(used.begin(), used.end(), false);
+    if (stray != used.end())
+      throw std::invalid_argument("vertex " + std::to_string(stray - used.begin()) +
+                                  " belongs to no face (" + std::to_string(std::count(used.begin(), used.end(), false)) +
+                                  " such vertices), and the TetGen domain cannot hold it: remove the unreferenced "
+                                  "vertices or use the voxel domain");
     TetgenDomain td;
     {
       StageTimer timer(times.domain);
       td = tetgen_domain(input, d);
     }
+    report(0.02, "embedding the surface");
     {
       StageTimer timer(times.embedding);
       emb = embed_surface(input, td.mesh);
@@ -289,6 +298,23 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
     return finish("iteration limit 0: embedded and written back");
   }
   if (r.before.risky_count == 0) return finish("no risky faces: nothing to do");
+
+  // The memory guard for the optimizer: the voxel domain's own guard (voxel_domain.h) only covers
+  // the domain, and the optimizer needs several times more. Refuse before allocating it.
+  const double needed = optimizer_bytes(domain.T.rows(), domain.V.rows());
+  if (o.max_memory_bytes > 0.0 && needed > o.max_memory_bytes) {
+    std::string msg = "the optimizer would need about " + gigabytes(needed) + " for this domain (" +
+                      std::to_string(domain.T.rows()) + " tets), more than the memory budget of " +
+                      gigabytes(o.max_memory_bytes) + " allows; ";
+    if (o.domain == DomainKind::Voxel) {
+      // Tets grow like the cube of the resolution, the factor somewhat faster.
+      const int fitting = std::max(1, static_cast<int>(o.resolution * std::cbrt(o.max_memory_bytes / needed) * 0.9));
+      msg += "use a voxel resolution of at most " + std::to_string(fitting);
+    } else {
+      msg += "use the voxel domain, or a coarser mesh";
+    }
+    throw std::invalid_argument(msg);
+  }
 
   const int nt = static_cast<int>(domain.T.rows());
   const Points n0 = face_normals(input);
@@ -585,6 +611,28 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
   r.history.resize(static_cast<size_t>(r.iterations) + 1);
   r.volume_after = signed_volume(r.surface);
   return finish(why);
+}
+
+}  // namespace
+
+SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
+  validate(input, o);
+  // The overhang rule reads the outside from the normals (DESIGN.md, Normals and orientation).
+  // Faces that disagree along shared edges leave no consistent outside: refuse, rather than bend
+  // the part to fix overhangs that are not there. A closed mesh that is inside out is unambiguous:
+  // work on it turned over, and say so in the result.
+  const EdgeTopology edges = edge_topology(input);
+  if (edges.flipped_edges > 0)
+    throw std::invalid_argument("the faces are not consistently oriented (" + edges.first_flipped + "; " +
+                                std::to_string(edges.flipped_edges) +
+                                " such edge(s)), so their normals do not tell the outside of the part; re-orient "
+                                "the faces coherently (MeshLab: Filters > Normals, Curvatures and Orientation > "
+                                "Re-Orient all faces coherently)");
+  if (!inside_out(input, edges)) return slim_oriented(input, o);
+  SlimmingResult r = slim_oriented(flipped(input), o);
+  r.surface.F = input.F;  // the topology never changes, orientation included
+  r.inside_out = true;
+  return r;
 }
 
 }  // namespace slim

@@ -63,8 +63,15 @@ struct SlimmingOptions {
   // --- running -----------------------------------------------------------------------------------
   int threads = 0;                   // OpenMP threads; 0: the runtime's default. Results do not
                                      // depend on it.
-  // Called after setup and after every iteration with a fraction in [0, 1] and a short message.
-  // Returning false cancels: the run throws slim::Cancelled and no result is produced.
+  // Memory budget, bytes (<= 0: none). After the domain is built, a run whose estimated peak
+  // (per-tet state and the Cholesky factor) exceeds it is refused with the largest voxel
+  // resolution that fits, before anything big is allocated. Before that, the voxel domain's own
+  // guard (voxel_domain.h: the worst case, every cell kept, within 2 GB or this budget if less)
+  // refuses absurd resolutions at once.
+  double max_memory_bytes = 4e9;
+  // Called with a fraction in [0, 1] and a short message before each stage (domain, embedding,
+  // factorization), after every iteration and at the end. Returning false cancels: the run throws
+  // slim::Cancelled at once and no result is produced. Stages in between cannot be interrupted.
   std::function<bool(double, const std::string&)> progress;
 };
 
@@ -92,6 +99,9 @@ struct SlimmingResult {
   int iterations = 0;                 // the iteration the result comes from (0: the input)
   int iterations_run = 0;             // iterations computed, including any after the best one
   std::string stop_reason;
+  // The input was inside out (closed, negative volume): it was computed with its faces turned
+  // over, so `before`, `after` and the volumes describe the part; `surface.F` is still the input's.
+  bool inside_out = false;
   Eigen::VectorXd displacement;       // #V, mm
   double volume_before = 0.0, volume_after = 0.0;  // signed enclosed volume, mm³
   int domain_vertices = 0, domain_tets = 0;
@@ -112,7 +122,9 @@ struct Cancelled : std::exception {
 };
 
 // Throws std::invalid_argument for bad input or options (with the reason and what to change),
-// Cancelled when progress returns false, std::runtime_error for a numerical failure.
+// including faces that are not consistently oriented; Cancelled when progress returns false;
+// std::runtime_error for a numerical failure. An inside-out closed mesh is not an error: it is
+// computed turned over (SlimmingResult::inside_out).
 SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& options = {});
 
 }  // namespace slim

@@ -1,9 +1,12 @@
 #include "core/surface.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <vector>
 
 namespace slim {
 
@@ -37,7 +40,12 @@ Eigen::VectorXd face_areas(const Surface& s) {
 }
 
 void check_surface(const Surface& s) {
-  if (!s.V.allFinite()) throw std::invalid_argument("the mesh has a vertex with a NaN or infinite coordinate");
+  if (!s.V.allFinite())
+    for (Eigen::Index v = 0; v < s.V.rows(); ++v)
+      if (!s.V.row(v).allFinite())
+        throw std::invalid_argument("vertex " + std::to_string(v) +
+                                    " has a NaN or infinite coordinate; repair or remove it (if no face uses it, "
+                                    "removing the unreferenced vertices does it)");
   const Eigen::Index nv = s.V.rows();
   for (Eigen::Index f = 0; f < s.F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
@@ -47,14 +55,64 @@ void check_surface(const Surface& s) {
 }
 
 double signed_volume(const Surface& s) {
+  if (s.V.rows() == 0) return 0.0;
+  // Far from the origin the terms a·(b×c) dwarf their sum; about the centroid they do not.
+  const Eigen::RowVector3d centre = s.V.colwise().mean();
   double vol = 0.0;
   for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
-    const Eigen::Vector3d a = s.V.row(s.F(f, 0)).transpose();
-    const Eigen::Vector3d b = s.V.row(s.F(f, 1)).transpose();
-    const Eigen::Vector3d c = s.V.row(s.F(f, 2)).transpose();
+    const Eigen::Vector3d a = (s.V.row(s.F(f, 0)) - centre).transpose();
+    const Eigen::Vector3d b = (s.V.row(s.F(f, 1)) - centre).transpose();
+    const Eigen::Vector3d c = (s.V.row(s.F(f, 2)) - centre).transpose();
     vol += a.dot(b.cross(c));
   }
   return vol / 6.0;
+}
+
+EdgeTopology edge_topology(const Surface& s) {
+  struct HalfEdge {
+    int lo, hi;
+    bool forward;
+    int face;
+  };
+  std::vector<HalfEdge> edges;
+  edges.reserve(static_cast<size_t>(3 * s.F.rows()));
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
+    if (s.F(f, 0) == s.F(f, 1) || s.F(f, 1) == s.F(f, 2) || s.F(f, 2) == s.F(f, 0)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
+      edges.push_back({std::min(a, b), std::max(a, b), a < b, static_cast<int>(f)});
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
+  });
+  EdgeTopology t;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+    const std::string name = "(" + std::to_string(edges[i].lo) + ", " + std::to_string(edges[i].hi) + ")";
+    if (j - i == 1) {
+      if (t.open_edges++ == 0) t.first_open = name;
+    } else if (j - i > 2) {
+      if (t.nonmanifold_edges++ == 0) t.first_nonmanifold = name + " is shared by " + std::to_string(j - i) + " faces";
+    } else if (edges[i].forward == edges[i + 1].forward) {
+      if (t.flipped_edges++ == 0)
+        t.first_flipped = "faces " + std::to_string(edges[i].face) + " and " + std::to_string(edges[i + 1].face) +
+                          " run along edge " + name + " in the same direction";
+    }
+    i = j;
+  }
+  return t;
+}
+
+bool inside_out(const Surface& s, const EdgeTopology& edges) {
+  return edges.open_edges == 0 && edges.flipped_edges == 0 && s.F.rows() > 0 && signed_volume(s) < 0.0;
+}
+
+Surface flipped(const Surface& s) {
+  Surface out = s;
+  out.F.col(1).swap(out.F.col(2));
+  return out;
 }
 
 }  // namespace slim

@@ -7,6 +7,8 @@
 // mesh file or MeshLab layer carries are never trusted.
 #pragma once
 
+#include <string>
+
 #include <Eigen/Core>
 
 namespace slim {
@@ -25,11 +27,36 @@ Points face_normals(const Surface& s);
 // #F areas, in squared mesh units.
 Eigen::VectorXd face_areas(const Surface& s);
 
-// Throws std::invalid_argument with a readable reason when F indexes outside V or V has a
-// non-finite coordinate. Everything downstream assumes a surface that passed this.
+// Throws std::invalid_argument with a readable reason (naming the first bad vertex or face) when
+// F indexes outside V or V has a non-finite coordinate. Everything downstream assumes a surface
+// that passed this.
 void check_surface(const Surface& s);
 
-// Signed enclosed volume (positive for a closed, outward-oriented surface).
+// Signed enclosed volume (positive for a closed, outward-oriented surface). Summed about the
+// vertices' centroid, so a part far from the origin loses no digits; for an open surface the
+// value depends on that centre and means little.
 double signed_volume(const Surface& s);
+
+// How the faces meet along their edges. An edge is an unordered pair of vertices; a face with a
+// repeated vertex has no orientation and is left out.
+struct EdgeTopology {
+  Eigen::Index open_edges = 0;         // used by one face only: the border of a hole or sheet
+  Eigen::Index nonmanifold_edges = 0;  // used by three faces or more
+  Eigen::Index flipped_edges = 0;      // used by two faces that run along it the same way
+  // The first edge of each kind in (lower vertex, higher vertex) order, for messages.
+  std::string first_open;         // "(3, 7)"
+  std::string first_nonmanifold;  // "(3, 7) is shared by 4 faces"
+  std::string first_flipped;      // "faces 2 and 9 run along edge (3, 7) in the same direction"
+};
+EdgeTopology edge_topology(const Surface& s);
+
+// Inside out: no open edge, no flipped edge, and a negative enclosed volume, so every normal
+// points into the part. (Non-manifold edges are allowed: duplicated faces or solids sharing an
+// edge still enclose a volume with the right sign.) The overhang rule reads the outside from the
+// normals, so such a mesh is analysed with its faces turned over (see `flipped`).
+bool inside_out(const Surface& s, const EdgeTopology& edges);
+
+// The same surface with every face turned over (its second and third vertices swapped).
+Surface flipped(const Surface& s);
 
 }  // namespace slim

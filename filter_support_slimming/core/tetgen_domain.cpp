@@ -8,7 +8,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "core/overhang.h"
@@ -156,48 +155,18 @@ bool faces_meet_improperly(const Surface& s, Eigen::Index f, Eigen::Index g) {
 }
 
 void check_orientation_and_closure(const Surface& s) {
-  struct HalfEdge {
-    int lo, hi;
-    bool forward;
-    int face;
-  };
-  std::vector<HalfEdge> edges;
-  edges.reserve(static_cast<size_t>(3 * s.F.rows()));
-  for (Eigen::Index f = 0; f < s.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
-      edges.push_back({std::min(a, b), std::max(a, b), a < b, static_cast<int>(f)});
-    }
-  std::sort(edges.begin(), edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
-  });
-  size_t open = 0, nonmanifold = 0, flipped = 0;
-  std::string first_open, first_nonmanifold, first_flipped;
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
-    const std::string name = "(" + std::to_string(edges[i].lo) + ", " + std::to_string(edges[i].hi) + ")";
-    if (j - i == 1) {
-      if (open++ == 0) first_open = name;
-    } else if (j - i > 2) {
-      if (nonmanifold++ == 0) first_nonmanifold = name + " is shared by " + std::to_string(j - i) + " faces";
-    } else if (edges[i].forward == edges[i + 1].forward) {
-      if (flipped++ == 0)
-        first_flipped = "faces " + std::to_string(edges[i].face) + " and " + std::to_string(edges[i + 1].face) +
-                        " run along edge " + name + " in the same direction";
-    }
-    i = j;
-  }
-  if (open > 0)
-    throw std::invalid_argument("the mesh is not closed: " + std::to_string(open) +
-                                " edge(s) belong to one face only, e.g. edge " + first_open +
+  const EdgeTopology edges = edge_topology(s);
+  if (edges.open_edges > 0)
+    throw std::invalid_argument("the mesh is not closed: " + std::to_string(edges.open_edges) +
+                                " edge(s) belong to one face only, e.g. edge " + edges.first_open +
                                 "; TetGen needs a closed surface (use the voxel domain)");
-  if (nonmanifold > 0)
-    throw std::invalid_argument("the mesh is not manifold: " + std::to_string(nonmanifold) + " edge(s), e.g. edge " +
-                                first_nonmanifold + "; TetGen needs every edge shared by exactly two faces");
-  if (flipped > 0)
-    throw std::invalid_argument("the mesh is not consistently oriented: " + first_flipped + " (" +
-                                std::to_string(flipped) + " such edge(s))");
+  if (edges.nonmanifold_edges > 0)
+    throw std::invalid_argument("the mesh is not manifold: " + std::to_string(edges.nonmanifold_edges) +
+                                " edge(s), e.g. edge " + edges.first_nonmanifold +
+                                "; TetGen needs every edge shared by exactly two faces (use the voxel domain)");
+  if (edges.flipped_edges > 0)
+    throw std::invalid_argument("the mesh is not consistently oriented: " + edges.first_flipped + " (" +
+                                std::to_string(edges.flipped_edges) + " such edge(s))");
 }
 
 void check_self_intersections(const Surface& s) {
@@ -455,8 +424,16 @@ std::vector<char> run_child(tetgenbehavior& behaviour, tetgenio& in, const Tetge
   if (reaped == pid && WIFSIGNALED(status))
     throw std::runtime_error("TetGen crashed (" + signal_name(WTERMSIG(status)) +
                              ") on this mesh; its process was separate, so nothing else was lost. Use the voxel domain");
-  if (reaped == pid && (!WIFEXITED(status) || WEXITSTATUS(status) != 0))
-    throw std::runtime_error("TetGen's process ended abnormally (exit status " + std::to_string(WEXITSTATUS(status)) + ")");
+  if (reaped == pid && (!WIFEXITED(status) || WEXITSTATUS(status) != 0)) {
+    // An allocator that dies at the address-space limit instead of throwing (AddressSanitizer's,
+    // a C library's) ends the child this way: say that it may have been memory.
+    std::ostringstream msg;
+    msg << "TetGen's process ended abnormally (exit status " << WEXITSTATUS(status) << ")";
+    if (address_limit > 0)
+      msg << "; it may have run out of memory (limited to " << o.child_memory_bytes / 1e9
+          << " GB more than this process maps); use the voxel domain";
+    throw std::runtime_error(msg.str());
+  }
   return data;
 }
 
@@ -518,10 +495,13 @@ TetgenDomain tetgen_domain(const Surface& surface, const Eigen::Vector3d& print_
   if (h.points < in.numberofpoints || h.tets <= 0 || h.corners < 4 || data.size() != sizeof h + point_bytes + tet_bytes)
     throw std::runtime_error("TetGen's process returned an incomplete result");
 
-  const REAL* P = reinterpret_cast<const REAL*>(data.data() + sizeof h);
+  // Copied out, not cast: the points start right after the 20-byte header, so a REAL* into the
+  // buffer would be misaligned (undefined behaviour; UBSan flagged it).
+  std::vector<REAL> P(3 * static_cast<size_t>(h.points));
+  std::memcpy(P.data(), data.data() + sizeof h, point_bytes);
   dom.mesh.V.resize(h.points, 3);
   for (Eigen::Index i = 0; i < h.points; ++i)
-    for (int a = 0; a < 3; ++a) dom.mesh.V(i, a) = P[3 * i + a];
+    for (int a = 0; a < 3; ++a) dom.mesh.V(i, a) = P[static_cast<size_t>(3 * i + a)];
   // With "Y" TetGen keeps the input points first and unchanged; the embedding relies on it.
   for (size_t i = 0; i < input_vertex.size(); ++i)
     if (dom.mesh.V.row(static_cast<Eigen::Index>(i)) != surface.V.row(input_vertex[i]))

@@ -1,7 +1,6 @@
 // The built plugin, loaded with QPluginLoader the way MeshLab loads it, on meshes in a MeshDocument.
 #include <gtest/gtest.h>
 
-#include <QApplication>
 #include <QJsonObject>
 
 #include <common/filterscript.h>
@@ -227,11 +226,4 @@ TEST(Plugin, SupportSlimmingRefusesBadSettingsWithoutAddingALayer) {
   EXPECT_FALSE(h.apply(kSlimming, md, params));
   EXPECT_TRUE(h.lastError().contains("resolution")) << h.lastError().toStdString();
   EXPECT_EQ(md.meshList.size(), 1);
-}
-
-int main(int argc, char** argv) {
-  qputenv("QT_QPA_PLATFORM", qgetenv("QT_QPA_PLATFORM").isEmpty() ? "offscreen" : qgetenv("QT_QPA_PLATFORM"));
-  QApplication app(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
 }

@@ -64,7 +64,8 @@ Surface extrude_xz(const std::vector<Eigen::Vector2d>& profile, const std::vecto
   return from_lists(v, f);
 }
 
-// Merges vertices at identical positions (exact compare: shapes are built from exact values).
+}  // namespace
+
 Surface weld(const Surface& s) {
   std::map<std::array<double, 3>, int> index;
   std::vector<Eigen::Vector3d> v;
@@ -83,7 +84,6 @@ Surface weld(const Surface& s) {
     f.emplace_back(remap[s.F(i, 0)], remap[s.F(i, 1)], remap[s.F(i, 2)]);
   return from_lists(v, f);
 }
-}  // namespace
 
 Surface box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   const std::vector<Eigen::Vector2d> profile{{lo.x(), lo.z()}, {hi.x(), lo.z()}, {hi.x(), hi.z()}, {lo.x(), hi.z()}};

@@ -16,6 +16,10 @@ Surface box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
 // Union of boxes as one surface (separate components; touching boxes share no vertices).
 Surface merge(const Surface& a, const Surface& b);
 
+// Merges vertices at identical positions (exact compare: shapes are built from exact values), so
+// touching shapes share their vertices.
+Surface weld(const Surface& s);
+
 // A T: a stem [-s/2,s/2]^2 x [0,h] and a bar of length L, width s, thickness t on top of it,
 // built as one closed manifold (no internal faces). Risky area at any alpha < 90: the two arm
 // undersides, 2 * (L - s)/2 * s = (L - s) * s.

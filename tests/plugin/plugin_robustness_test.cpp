@@ -1,0 +1,235 @@
+// Issue 7 through the plugin as MeshLab runs it: every bad input of the catalogue
+// (support/bad_inputs.h) through both filters on a MeshDocument. A refusal must leave the
+// document exactly as it was (no new layer, the input layer's data untouched) with the reason in
+// the error message and the log; a success must give a sane layer. Then hand-written .mlx
+// parameter lists that are wrong in the ways a script can be.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <vector>
+
+#include <QFile>
+#include <QRegularExpression>
+#include <QTemporaryDir>
+
+#include <common/filterscript.h>
+
+#include "core/overhang.h"
+#include "harness.h"
+#include "support/bad_inputs.h"
+#include "support/shapes.h"
+#include "vcg_adapters/surface_adapter.h"
+
+using namespace slim;
+using test::BadInput;
+using test::mentions;
+using test::PluginHarness;
+
+namespace {
+const QString kOverhang = "Overhang Analysis";
+const QString kSlimming = "Support Slimming";
+
+// Everything of a layer a failed filter must leave alone, compared bit for bit (NaN too).
+struct LayerSnapshot {
+  std::vector<vcg::Point3f> positions;
+  std::vector<bool> selected;
+  int vn = 0, fn = 0, mask = 0;
+  explicit LayerSnapshot(const MeshModel& m) : vn(m.cm.vn), fn(m.cm.fn), mask(m.dataMask()) {
+    for (const auto& v : m.cm.vert) positions.push_back(v.cP());
+    for (const auto& f : m.cm.face) selected.push_back(f.IsS());
+  }
+  bool operator==(const LayerSnapshot& o) const {
+    return vn == o.vn && fn == o.fn && mask == o.mask && selected == o.selected && positions.size() == o.positions.size() &&
+           (positions.empty() || std::memcmp(positions.data(), o.positions.data(), positions.size() * sizeof(vcg::Point3f)) == 0);
+  }
+};
+
+MeshModel* add_case_layer(MeshDocument& md, const BadInput& c) {
+  MeshModel* m = test::add_layer(md, c.surface, QString::fromStdString(c.name));
+  for (size_t f = 0; f < c.options.rigid_features.size(); ++f)
+    if (c.options.rigid_features[f]) m->cm.face[f].SetS();
+  return m;
+}
+
+// The dialog's values for this case.
+RichParameterList slimming_params(PluginHarness& h, MeshDocument& md, const BadInput& c) {
+  RichParameterList p = h.defaults(kSlimming, md);
+  const SlimmingOptions& o = c.options;
+  p.setValue("printDirection", Point3fValue(vcg::Point3f(float(o.print_direction.x()), float(o.print_direction.y()),
+                                                         float(o.print_direction.z()))));
+  p.setValue("alphaMax", FloatValue(float(o.alpha_max_deg)));
+  p.setValue("resolution", IntValue(o.resolution));
+  p.setValue("domain", EnumValue(o.domain == DomainKind::TetGen ? 1 : 0));
+  p.setValue("method", EnumValue(o.method == SlimmingMethod::Paper ? 1 : 0));
+  p.setValue("maxIterations", IntValue(o.max_iterations));
+  p.setValue("maxDeviation", FloatValue(float(o.max_deviation_pct)));
+  p.setValue("maxK", IntValue(o.max_k));
+  p.setValue("preserveSelection", BoolValue(c.preserve_selection));
+  return p;
+}
+
+// The layer as the core sees it, and its overhangs (turned over when inside out).
+OverhangReport measure(const MeshModel& m, const BadInput& c, double plate_tolerance) {
+  const Surface s = vcgx::to_surface(m.cm);
+  OverhangOptions o;
+  o.print_direction = c.options.print_direction;
+  o.alpha_max_deg = c.options.alpha_max_deg;
+  o.plate_tolerance = plate_tolerance;
+  return analyse_overhang(c.inside_out ? flipped(s) : s, o);
+}
+
+class BadInputPlugin : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(BadInputPlugin, SupportSlimmingAddsASaneLayerOrRefusesLeavingTheDocumentAlone) {
+  const BadInput& c = GetParam();
+  PluginHarness h;
+  ASSERT_TRUE(h.ok()) << h.error().toStdString();
+  MeshDocument md;
+  MeshModel* input = add_case_layer(md, c);
+  const LayerSnapshot before(*input);
+  const RichParameterList params = slimming_params(h, md, c);
+  const bool ok = h.apply(kSlimming, md, params);
+  const std::string error = h.lastError().toStdString(), log = h.logLines().join("\n").toStdString();
+  EXPECT_TRUE(LayerSnapshot(*input) == before) << c.name << ": the input layer changed";
+
+  const std::string refusal = c.plugin_refusal.empty() ? c.refusal : c.plugin_refusal;
+  if (!refusal.empty()) {
+    ASSERT_FALSE(ok) << c.name << " was accepted";
+    EXPECT_EQ(error.rfind("Support Slimming: ", 0), 0u) << error;
+    EXPECT_TRUE(mentions(error, refusal)) << c.name << ": " << error;
+    if (c.plugin_refusal.empty()) {
+      EXPECT_TRUE(mentions(error, c.advice)) << c.name << ": " << error;
+    }
+    EXPECT_NE(log.find(error), std::string::npos) << "the reason is not in the log: " << log;
+    EXPECT_EQ(md.meshList.size(), 1) << c.name << ": a layer was left behind";
+    EXPECT_EQ(md.mm(), input);
+    return;
+  }
+  ASSERT_TRUE(ok) << c.name << ": " << error;
+  ASSERT_EQ(md.meshList.size(), 2);
+  const MeshModel* out = md.mm();
+  ASSERT_NE(out, input);
+  ASSERT_EQ(out->cm.vn, input->cm.vn);
+  ASSERT_EQ(out->cm.fn, input->cm.fn);
+  for (const auto& v : out->cm.vert) ASSERT_TRUE(std::isfinite(v.cP()[0] + v.cP()[1] + v.cP()[2])) << c.name;
+  EXPECT_TRUE(out->hasDataMask(MeshModel::MM_FACEQUALITY) && out->hasDataMask(MeshModel::MM_VERTQUALITY));
+
+  // Sane statistics, measured on the layers (float positions: tolerances of a few float ulps).
+  const Surface in_s = vcgx::to_surface(input->cm), out_s = vcgx::to_surface(out->cm);
+  const double diag = (in_s.V.colwise().maxCoeff() - in_s.V.colwise().minCoeff()).norm();
+  const double ulps = 1e-6 * std::max(diag, in_s.V.cwiseAbs().maxCoeff());
+  const double tolerance = params.getAbsPerc("plateTolerance");
+  const OverhangReport was = measure(*input, c, tolerance), now = measure(*out, c, tolerance);
+  EXPECT_LE(now.risky_area, was.risky_area + 1e-6 * was.total_area) << c.name;
+  const Eigen::Vector3d d = c.options.print_direction.normalized();
+  EXPECT_GE((out_s.V * d).minCoeff(), (in_s.V * d).minCoeff() - ulps) << c.name << ": below the plate";
+  if (c.options.max_deviation_pct > 0) {
+    EXPECT_LE((out_s.V - in_s.V).rowwise().norm().maxCoeff(), c.options.max_deviation_pct / 100.0 * diag + ulps) << c.name;
+  }
+  for (int f = 0; f < out->cm.fn; ++f) {
+    // The core measured double positions; the layer holds them as floats.
+    EXPECT_NEAR(out->cm.face[static_cast<size_t>(f)].cQ(), now.quality(f), 5e-3) << c.name << " face " << f;
+  }
+  EXPECT_TRUE(mentions(log, "risky area")) << log;
+  EXPECT_EQ(mentions(log, "inside out"), c.inside_out) << log;
+}
+
+TEST_P(BadInputPlugin, OverhangAnalysisColoursTheLayerOrRefusesLeavingItAlone) {
+  const BadInput& c = GetParam();
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  MeshDocument md;
+  MeshModel* m = add_case_layer(md, c);
+  const LayerSnapshot before(*m);
+  RichParameterList params = h.defaults(kOverhang, md);
+  const RichParameterList slimming = slimming_params(h, md, c);
+  for (const char* name : {"printDirection", "alphaMax"})
+    params.setValue(name, slimming.getParameterByName(name).value());
+  const bool ok = h.apply(kOverhang, md, params);
+  const std::string error = h.lastError().toStdString(), log = h.logLines().join("\n").toStdString();
+  if (!c.analysis_refusal.empty()) {
+    ASSERT_FALSE(ok) << c.name << " was analysed";
+    EXPECT_TRUE(mentions(error, c.analysis_refusal)) << c.name << ": " << error;
+    EXPECT_NE(log.find(error), std::string::npos) << log;
+    EXPECT_TRUE(LayerSnapshot(*m) == before) << c.name << ": the layer changed";
+    return;
+  }
+  ASSERT_TRUE(ok) << c.name << ": " << error;
+  ASSERT_TRUE(m->hasDataMask(MeshModel::MM_FACEQUALITY));
+  const OverhangReport expected = measure(*m, c, params.getAbsPerc("plateTolerance"));
+  for (int f = 0; f < m->cm.fn; ++f) {
+    EXPECT_NEAR(m->cm.face[static_cast<size_t>(f)].cQ(), expected.quality(f), 1e-4) << c.name << " face " << f;
+    EXPECT_EQ(m->cm.face[static_cast<size_t>(f)].IsS(), expected.risky[static_cast<size_t>(f)]) << c.name;
+  }
+  EXPECT_EQ(mentions(log, "inside out"), c.inside_out) << log;
+  EXPECT_EQ(mentions(log, "not consistently oriented"), edge_topology(c.surface).flipped_edges > 0) << log;
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, BadInputPlugin, ::testing::ValuesIn(test::bad_inputs()),
+                         [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
+
+// The parameters of a hand-written script: the example with `edit` applied to its text.
+RichParameterList script_params(const QString& example, const QString& filter,
+                                const std::function<QString(QString)>& edit) {
+  QFile in(QString(SLIM_SOURCE_DIR) + "/examples/" + example);
+  EXPECT_TRUE(in.open(QIODevice::ReadOnly));
+  QTemporaryDir dir;
+  const QString path = dir.filePath("edited.mlx");
+  QFile out(path);
+  EXPECT_TRUE(out.open(QIODevice::WriteOnly));
+  out.write(edit(QString::fromUtf8(in.readAll())).toUtf8());
+  out.close();
+  FilterScript script;
+  EXPECT_TRUE(script.open(path));
+  for (const auto& entry : script)
+    if (entry.filterName() == filter) return entry.second;
+  ADD_FAILURE() << "no " << filter.toStdString() << " in the edited script";
+  return {};
+}
+
+struct ScriptFault {
+  const char* name;
+  QString (*edit)(QString);
+  const char* problem;  // what the filter's error must say
+};
+
+const ScriptFault kScriptFaults[] = {
+    {"missing parameter", [](QString s) { return s.remove(QRegularExpression(R"(\s*<Param[^>]*name="alphaMax"[^>]*/>)")); },
+     "'alphaMax' (Self-supporting angle (deg)) is missing"},
+    {"unreadable value (dropped by MeshLab)",
+     [](QString s) { return s.replace(R"(name="maxDeviation" value="5")", R"(name="maxDeviation" value="five")"); },
+     "'maxDeviation' (Deviation budget (%)) is missing"},
+    {"wrong type", [](QString s) { return s.replace(R"(type="RichFloat" name="alphaMax")", R"(type="RichInt" name="alphaMax")"); },
+     "is a RichInt, but it must be a RichFloat"},
+    {"absolute value given as a plain float",
+     [](QString s) {
+       return s.replace(R"(type="RichAbsPerc" name="plateTolerance" value="0.01" min="0" max="100")",
+                        R"(type="RichFloat" name="plateTolerance" value="0.01")");
+     },
+     "is a RichFloat, but it must be a RichAbsPerc"},
+    {"enum out of range",
+     [](QString s) { return s.replace(R"(name="domain" value="0")", R"(name="domain" value="5")"); },
+     "must be one of 0..1 (Voxel, TetGen)"},
+    {"NaN angle", [](QString s) { return s.replace(R"(name="alphaMax" value="45")", R"(name="alphaMax" value="nan")"); },
+     "[0, 90)"},
+    {"infinite print direction", [](QString s) { return s.replace(R"(z="1")", R"(z="inf")"); }, "print direction"},
+};
+
+}  // namespace
+
+TEST(PluginScripts, MalformedParameterListsFailWithTheirReasonAndLeaveTheDocumentAlone) {
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  for (const ScriptFault& fault : kScriptFaults) {
+    MeshDocument md;
+    MeshModel* m = test::add_layer(md, test::t_shape(), "T");
+    const LayerSnapshot before(*m);
+    const RichParameterList params = script_params("support_slimming.mlx", kSlimming, fault.edit);
+    EXPECT_FALSE(h.apply(kSlimming, md, params)) << fault.name;
+    EXPECT_TRUE(mentions(h.lastError().toStdString(), fault.problem)) << fault.name << ": " << h.lastError().toStdString();
+    EXPECT_EQ(md.meshList.size(), 1) << fault.name;
+    EXPECT_TRUE(LayerSnapshot(*m) == before) << fault.name;
+  }
+}
