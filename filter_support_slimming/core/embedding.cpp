@@ -386,6 +386,13 @@ void face_pieces(const Surface& s, const Locator& loc, const Embedding& e, Eigen
     return;
   }
   if (out.size() == first) out.push_back({face, e.vertex_tet(v[0]), 0.0});  // all of it lost to rounding
+  if (covered > area) {
+    // Overlap: tets count what lies within plane_eps of their faces, so a face lying along a
+    // tet face (a part flat to 1e-9 of a cell) is counted on both sides. Scale the pieces back.
+    const double keep = area / covered;
+    for (size_t i = first; i < out.size(); ++i) out[i].area *= keep;
+    dropped *= keep;
+  }
   out[largest].area += dropped + std::max(0.0, area - covered);  // keeps the sum equal to the area
 }
 

@@ -1,5 +1,6 @@
 #include "core/overhang.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -54,6 +55,8 @@ OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options
       ++r.risky_count;
       r.risky_area += area(f);
       r.risky_deficit -= area(f) * r.quality(f);
+      const double above_plate = (height(s.F(f, 0)) + height(s.F(f, 1)) + height(s.F(f, 2))) / 3.0 - r.plate_height;
+      r.shadow_volume += area(f) * std::max(0.0, -n.row(f).dot(d)) * above_plate;
     }
   }
   return r;

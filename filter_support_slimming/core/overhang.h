@@ -33,6 +33,11 @@ struct OverhangReport {
   // sum over risky faces of area * -(n·d + tau) (mm²): how far the overhangs are from safe. It
   // falls smoothly while faces tilt towards the threshold, when the risky area does not move yet.
   double risky_deficit = 0.0;
+  // sum over risky faces of area * -(n·d) * (height of the face's centroid above the plate)
+  // (mm³): the volume of the prism between each overhang and the plate, a support-volume
+  // estimate. Ranks meshes by slicer support volume far better than the risky area does (an
+  // overhang just above the plate needs little support, one high up needs a tall column).
+  double shadow_volume = 0.0;
   double total_area = 0.0;     // mm²
   double plate_height = 0.0;   // min over vertices of v·d (mm)
   double risky_share() const { return total_area > 0.0 ? risky_area / total_area : 0.0; }

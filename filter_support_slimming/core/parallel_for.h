@@ -6,11 +6,40 @@
 // lowest failing i is kept and rethrown on the calling thread after the loop, so the caller sees
 // an ordinary exception, and which one does not depend on the thread count. The other iterations
 // still run (OpenMP has no portable early exit); their exceptions are dropped.
+//
+// ThreadScope(threads): the OpenMP thread count for the lifetime of the object (threads > 0), the
+// previous one restored after; threads <= 0 keeps the runtime's default.
 #pragma once
 
 #include <exception>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace slim {
+
+class ThreadScope {
+ public:
+  explicit ThreadScope(int threads) {
+#ifdef _OPENMP
+    previous_ = omp_get_max_threads();
+    if (threads > 0) omp_set_num_threads(threads);
+#else
+    (void)threads;
+#endif
+  }
+  ~ThreadScope() {
+#ifdef _OPENMP
+    omp_set_num_threads(previous_);
+#endif
+  }
+  ThreadScope(const ThreadScope&) = delete;
+  ThreadScope& operator=(const ThreadScope&) = delete;
+
+ private:
+  int previous_ = 1;
+};
 
 template <class Body>
 void parallel_for(int n, Body&& body) {

@@ -38,7 +38,10 @@
 //    vertices are convex combinations of domain vertices, so the surface cannot overshoot either.
 //  * Inversion guard: a step that would invert a tet is cut back to the largest fraction that
 //    keeps every tet positive, and the run stops there.
-//  * Output: the best iterate (least risky area).
+//  * Output: the best iterate by estimated support, the shadow volume (overhang.h), among those
+//    with no more risky area than the input: bending a T's arms or a mushroom's rim can shrink
+//    the risky area while the overhangs left move higher and need more support. When no iterate
+//    beats the input, the input returns.
 //
 // What SlimmingMethod::Coherent adds to the paper (each measured, see README):
 //  * risky_boost: tets holding faces that are risky at the start weigh more in the global step, so
@@ -167,26 +170,6 @@ Eigen::Matrix3d average_rotation(const std::vector<std::pair<double, Eigen::Quat
   return q.toRotationMatrix();
 }
 
-class ThreadScope {
- public:
-  explicit ThreadScope(int threads) {
-#ifdef _OPENMP
-    previous_ = omp_get_max_threads();
-    if (threads > 0) omp_set_num_threads(threads);
-#else
-    (void)threads;
-#endif
-  }
-  ~ThreadScope() {
-#ifdef _OPENMP
-    omp_set_num_threads(previous_);
-#endif
-  }
-
- private:
-  int previous_ = 1;
-};
-
 // Peak memory of the optimizer for a domain of `tets` tets and `vertices` vertices, in bytes.
 // Measured (peak RSS of one iteration on solid cubes, 260k to 2M tets, CHOLMOD): about 650 bytes
 // per tet (rest inverses, L, M and the extra rotations, face pieces, ARAP's rest shapes and
@@ -231,6 +214,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
   s0.risky_area = r.before.risky_area;
   s0.risky_share = r.before.risky_share();
   s0.risky_deficit = r.before.risky_deficit;
+  s0.shadow_volume = r.before.shadow_volume;
   r.history.push_back(s0);
   r.after = r.before;
   auto finish = [&](const std::string& why) {
@@ -290,12 +274,18 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
   r.domain_vertices = static_cast<int>(domain.V.rows());
   r.domain_tets = static_cast<int>(domain.T.rows());
   if (o.max_iterations == 0) {
-    // Embed and write back only: the surface rebuilt from the undeformed domain.
-    embedded_positions(emb, domain.V, r.surface.V);
-    r.displacement = (r.surface.V - input.V).rowwise().norm();
-    r.after = analyse_overhang(r.surface, measure);
-    r.volume_after = signed_volume(r.surface);
-    return finish("iteration limit 0: embedded and written back");
+    // Embed and write back only: the surface rebuilt from the undeformed domain must be the input
+    // to the embedding's accuracy (embedding.h). The input's own positions are then handed back:
+    // a rounding-level move can tip a face lying exactly at alpha_max (a 45° chamfer) into risky.
+    Points rebuilt;
+    embedded_positions(emb, domain.V, rebuilt);
+    const double round_trip = (rebuilt - input.V).rowwise().norm().maxCoeff();
+    if (!(round_trip <= 1e-9 * diag))
+      throw std::runtime_error("the embedding rebuilds the surface only to " + std::to_string(round_trip) +
+                               " mm, beyond 1e-9 of the bbox diagonal (an internal error; please report it)");
+    char why[160];
+    std::snprintf(why, sizeof why, "iteration limit 0: embedded and written back (round trip within %.3g mm)", round_trip);
+    return finish(why);
   }
   if (r.before.risky_count == 0) return finish("no risky faces: nothing to do");
 
@@ -388,7 +378,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
   // ---- the iterations -------------------------------------------------------------------------------
   Points V = domain.V;
   Points surface_V = input.V;
-  double best_risky = r.before.risky_area;
+  double best_shadow = r.before.shadow_volume, best_risky = r.before.risky_area;
   std::vector<Eigen::Matrix3d> L(static_cast<size_t>(nt)), M(static_cast<size_t>(nt)), extra(static_cast<size_t>(nt));
   std::vector<Eigen::Matrix3d> blended(coherent ? static_cast<size_t>(nt) : 0);  // reused every iteration
   std::vector<double> ae_area(static_cast<size_t>(nt)), risky_weight(static_cast<size_t>(nt));
@@ -441,12 +431,9 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
         blended[ts] = extra[ts];
         if (tet_feature[ts] >= 0) return;
         std::vector<std::pair<double, Eigen::Quaterniond>> items;
-        double neighbour_weight = 0.0;
         for (int u : neighbours[ts])
-          if (risky_weight[static_cast<size_t>(u)] > 0.0 && tet_feature[static_cast<size_t>(u)] < 0) {
+          if (risky_weight[static_cast<size_t>(u)] > 0.0 && tet_feature[static_cast<size_t>(u)] < 0)
             items.emplace_back(risky_weight[static_cast<size_t>(u)], Eigen::Quaterniond(extra[static_cast<size_t>(u)]));
-            neighbour_weight += risky_weight[static_cast<size_t>(u)];
-          }
         if (items.empty()) return;
         const double share = risky_weight[ts] > 0.0 ? cs.smoothing : cs.propagation;
         const Eigen::Quaterniond mean(average_rotation(items));
@@ -496,10 +483,14 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     Points Vnew = arap.solve(L, domain.V);
     global_timer.reset();
     const double energy_start = arap.energy(V, L), energy_solved = arap.energy(Vnew, L);
+    bool guarded = false;  // whether the plate, budget or inversion guards moved the solution
     StageTimer measure_timer(times.measure);
     for (Eigen::Index v = 0; v < Vnew.rows(); ++v) {
       const double below = plate - Vnew.row(v).dot(d.transpose());
-      if (below > 0.0) Vnew.row(v) += below * d.transpose();
+      if (below > 0.0) {
+        Vnew.row(v) += below * d.transpose();
+        guarded = true;
+      }
     }
     Points surface_new;
     embedded_positions(emb, Vnew, surface_new);
@@ -536,6 +527,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
         budget_stop = true;
       }
       if (!over.empty()) {
+        guarded = true;
         embedded_positions(emb, Vnew, surface_new);
         disp = (surface_new - input.V).rowwise().norm();
       }
@@ -557,6 +549,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
         (inverted(V + mid * step) == 0 ? lo : hi) = mid;
       }
       Vnew = V + lo * step;
+      guarded = true;
       embedded_positions(emb, Vnew, surface_new);
       disp = (surface_new - input.V).rowwise().norm();
       inversion_stop = true;
@@ -568,7 +561,8 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     st.risky_area = now.risky_area;
     st.risky_share = now.risky_share();
     st.risky_deficit = now.risky_deficit;
-    st.energy = arap.energy(Vnew, L);
+    st.shadow_volume = now.shadow_volume;
+    st.energy = guarded ? arap.energy(Vnew, L) : energy_solved;
     st.energy_start = energy_start;
     st.energy_solved = energy_solved;
     double ae = 0.0;
@@ -586,7 +580,13 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
 
     V = Vnew;
     surface_V = surface_new;
-    if (st.risky_area <= best_risky) {
+    // The support the iterate needs, estimated by its shadow volume, picks the result; the risky
+    // area breaks ties (an iterate with no overhang left, or one with only plate-level ones). An
+    // iterate with more risky area than the input never qualifies: neither measure may get worse.
+    const bool qualifies = st.risky_area <= r.before.risky_area;
+    if (qualifies &&
+        (st.shadow_volume < best_shadow || (st.shadow_volume == best_shadow && st.risky_area <= best_risky))) {
+      best_shadow = st.shadow_volume;
       best_risky = st.risky_area;
       r.surface.V = surface_new;
       r.after = now;
@@ -610,6 +610,8 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
   // The result is the best iterate; its statistics close the history.
   r.history.resize(static_cast<size_t>(r.iterations) + 1);
   r.volume_after = signed_volume(r.surface);
+  if (r.iterations == 0 && r.iterations_run > 0)
+    why += "; no iterate needed less support than the input (shadow volume), so the input is returned unchanged";
   return finish(why);
 }
 

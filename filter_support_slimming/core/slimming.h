@@ -18,7 +18,10 @@
 // cancel. The deviation budget (the largest vertex displacement, % of the bbox diagonal) is a
 // constraint, not a stop: after every global step the part of the step that would take a domain
 // vertex past the budget is rolled back, so no surface vertex ever moves further.
-// The result is the iterate with the least risky area (the later one on ties).
+// The result is the iterate with the least shadow volume (overhang.h: the support it needs,
+// estimated), then the least risky area, the later one on ties, among the iterates with no more
+// risky area than the input; the input itself when no iterate beats it. So neither the risky
+// area nor the shadow volume of the result exceeds the input's.
 #pragma once
 
 #include <functional>
@@ -80,6 +83,7 @@ struct IterationStats {
   double risky_area = 0.0;         // mm²
   double risky_share = 0.0;        // of the total area
   double risky_deficit = 0.0;      // mm², see OverhangReport::risky_deficit
+  double shadow_volume = 0.0;      // mm³, see OverhangReport::shadow_volume
   double energy = 0.0;             // ARAP energy of the accepted positions for this iteration's L_t
   // The global step alone: ARAP energy for this iteration's L_t at the positions it started from,
   // and at its solution before the plate, budget and inversion guards touched it. The solution

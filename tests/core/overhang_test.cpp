@@ -35,6 +35,46 @@ TEST(Overhang, TShapeArmUndersidesAreExactlyTheRiskyArea) {
   }
 }
 
+TEST(Overhang, ShadowVolumeIsThePrismBetweenTheOverhangsAndThePlate) {
+  // The T's arm undersides are flat, face straight down and sit at the stem's height: the shadow
+  // is exactly the empty box under the arms, whatever the angle.
+  const test::TShape p;
+  const double under_arms = test::t_shape_arm_underside_area(p) * p.height;
+  for (double alpha : {0.0, 45.0, 89.0}) {
+    OverhangOptions o;
+    o.alpha_max_deg = alpha;
+    EXPECT_NEAR(analyse_overhang(test::t_shape(p), o).shadow_volume, under_arms, 1e-9 * under_arms) << "alpha " << alpha;
+  }
+  // Lifting the part lifts nothing: heights count from the part's own lowest point.
+  const Surface lifted = test::transformed(test::t_shape(p), Eigen::Matrix3d::Identity(), {0, 0, 100});
+  EXPECT_NEAR(analyse_overhang(lifted).shadow_volume, under_arms, 1e-9 * under_arms);
+}
+
+TEST(Overhang, ShadowVolumeOfATiltedOverhangCountsItsFootprint) {
+  // A cube's bottom face without the plate rule, turned about x: at 30 degrees from flat it is
+  // still risky at alpha 45 and its footprint is area * cos(30); its centroid rises with the turn.
+  const double side = 10.0, turn = 30.0 * M_PI / 180.0;
+  const Surface cube = test::transformed(test::box({-5, -5, -5}, {5, 5, 5}), test::axis_angle({1, 0, 0}, turn));
+  OverhangOptions o;
+  o.plate_tolerance = -1.0;
+  const OverhangReport r = analyse_overhang(cube, o);
+  const Points n = face_normals(cube);
+  const Eigen::VectorXd area = face_areas(cube);
+  double expected = 0.0;
+  for (Eigen::Index f = 0; f < cube.F.rows(); ++f) {
+    if (!r.risky[static_cast<size_t>(f)]) continue;
+    const double centroid_z = (cube.V(cube.F(f, 0), 2) + cube.V(cube.F(f, 1), 2) + cube.V(cube.F(f, 2), 2)) / 3.0;
+    expected += area(f) * -n(f, 2) * (centroid_z - r.plate_height);
+  }
+  EXPECT_EQ(r.risky_count, 2);  // only the turned bottom: the side that went down is at 30 degrees from vertical
+  EXPECT_NEAR(r.risky_area, side * side, 1e-9);
+  EXPECT_NEAR(r.shadow_volume, expected, 1e-9 * expected);
+  // The bottom face's centre sits 5 below the cube's centre, turned by 50 degrees; the lowest
+  // corner is the cube's lowest point.
+  const double centre_above_plate = -r.plate_height - 5.0 * std::cos(turn);
+  EXPECT_NEAR(r.shadow_volume, side * side * std::cos(turn) * centre_above_plate, 1e-6);
+}
+
 TEST(Overhang, IcosphereRiskyAreaMatchesTheSphericalCap) {
   const double r = 10.0;
   const Surface sphere = test::icosphere(5, r);

@@ -98,16 +98,16 @@ INSTANTIATE_TEST_SUITE_P(Catalogue, BadInputCore, ::testing::ValuesIn(test::bad_
 }  // namespace
 
 TEST(Robustness, ResultDoesNotDependOnScaleOrPosition) {
-  // The same T at 1e-3 mm, 50 mm and 1e6 mm, and 1e5 mm from the origin: every tolerance is
+  // The same arch at 1e-3 mm, 50 mm and 1e6 mm, and 1e5 mm from the origin: every tolerance is
   // relative, so the share of risky area left must match.
   SlimmingOptions o;
   o.max_iterations = 10;
-  const SlimmingResult base = slim_supports(test::t_shape(), o);
+  const SlimmingResult base = slim_supports(test::arch(), o);
   ASSERT_LT(base.after.risky_share(), base.before.risky_share());
   for (const auto& [name, scale, shift] : {std::make_tuple("tiny", 2e-5, 0.0), std::make_tuple("huge", 2e4, 0.0),
                                            std::make_tuple("far", 1.0, 1e5)}) {
     const Surface s =
-        test::transformed(test::t_shape(), scale * Eigen::Matrix3d::Identity(), Eigen::Vector3d::Constant(shift));
+        test::transformed(test::arch(), scale * Eigen::Matrix3d::Identity(), Eigen::Vector3d::Constant(shift));
     const SlimmingResult r = slim_supports(s, o);
     EXPECT_NEAR(r.after.risky_share(), base.after.risky_share(), 1e-3) << name;
     EXPECT_EQ(r.iterations, base.iterations) << name;

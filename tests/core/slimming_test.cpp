@@ -72,19 +72,40 @@ TEST(Slimming, ArchOpeningIsSlimmedWithALargeBudget) {
   EXPECT_LT(r.after.risky_area, 0.7 * r.before.risky_area);
 }
 
-TEST(Slimming, TAndMushroomOverhangsMoveTowardsSafe) {
+TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
   // At 45 degrees the flat undersides of the T's arms and the mushroom's cap need 35-45 degrees of
-  // rotation, more than a 5% budget allows, so their risky area falls only a little (see the
-  // README's table); how far the overhangs are from safe must still fall clearly.
-  for (const Surface& s : {test::refined(test::t_shape(), 3), test::refined(test::mushroom(), 2)}) {
-    SlimmingOptions o;
-    o.max_deviation_pct = 5.0;
-    const SlimmingResult r = slim_supports(s, o);
-    EXPECT_LT(r.after.risky_area, r.before.risky_area);
-    EXPECT_LT(r.after.risky_deficit, 0.97 * r.before.risky_deficit);
-    EXPECT_EQ(r.history.back().inverted_tets, 0);
-    EXPECT_GE(r.surface.V.col(2).minCoeff(), -1e-9);  // nothing below the plate
-  }
+  // rotation, more than a 5% budget allows: bending them lifts the overhangs that are left, and
+  // PrusaSlicer then lays more support (README, the judge). The result is the iterate with the
+  // least shadow volume, so such a run hands back the input itself, untouched; where slimming
+  // works (bunny, arch) the shadow volume falls clearly.
+  struct Case {
+    const char* name;
+    Surface mesh;
+    bool improves;
+  };
+  const Case cases[] = {{"T", test::refined(test::t_shape(), 3), false},
+                        {"mushroom", test::refined(test::mushroom(), 2), false},
+                        {"arch", test::refined(test::arch(), 3), true},
+                        {"bunny", bunny(), true}};
+  for (const Case& c : cases)
+    for (SlimmingMethod method : {SlimmingMethod::Paper, SlimmingMethod::Coherent}) {
+      SCOPED_TRACE(std::string(c.name) + (method == SlimmingMethod::Paper ? " paper" : " coherent"));
+      SlimmingOptions o;
+      o.method = method;
+      o.max_deviation_pct = 5.0;
+      const SlimmingResult r = slim_supports(c.mesh, o);
+      EXPECT_GT(r.before.shadow_volume, 0.0);
+      EXPECT_LE(r.after.shadow_volume, r.before.shadow_volume);
+      EXPECT_LE(r.after.risky_area, r.before.risky_area);
+      for (const IterationStats& st : r.history) EXPECT_GE(st.shadow_volume, r.after.shadow_volume);
+      EXPECT_EQ(r.history.back().inverted_tets, 0);
+      EXPECT_GE(r.surface.V.col(2).minCoeff(), -1e-9);  // nothing below the plate
+      if (r.iterations == 0) {
+        EXPECT_EQ(r.surface.V, c.mesh.V);  // the input itself, bit for bit
+        EXPECT_EQ(r.displacement.maxCoeff(), 0.0);
+      }
+      if (c.improves && method == SlimmingMethod::Coherent) EXPECT_LT(r.after.shadow_volume, 0.8 * r.before.shadow_volume);
+    }
 }
 
 TEST(Slimming, EveryGlobalStepMinimisesItsOwnEnergy) {
@@ -116,8 +137,10 @@ TEST(Slimming, ZeroIterationsEmbedsAndWritesBack) {
   SlimmingOptions o;
   o.max_iterations = 0;
   const SlimmingResult r = slim_supports(bunny(), o);
-  EXPECT_LE((r.surface.V - bunny().V).cwiseAbs().maxCoeff(), 1e-9 * diag(bunny()));
+  EXPECT_EQ(r.surface.V, bunny().V);  // checked to round-trip, then handed back exactly
+  EXPECT_EQ(r.after.risky_area, r.before.risky_area);
   EXPECT_EQ(r.iterations, 0);
+  EXPECT_NE(r.stop_reason.find("round trip within"), std::string::npos) << r.stop_reason;
 }
 
 TEST(Slimming, DeviationBudgetHoldsAtEveryLevel) {

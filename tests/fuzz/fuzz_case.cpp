@@ -22,6 +22,11 @@ constexpr int kMaxVertices = 300, kMaxFaces = 600;
 // resolution of a million on a mesh that is long in one direction only still fits the default
 // 2 GB domain budget, and would take seconds per input.
 constexpr double kMemoryBudget = 5e7;
+// Resolutions from here up stay as they are: even a grid one cell thick then needs more than the
+// budget, so the guards must refuse them at once. Below, down to 25, they fold to 1..24: a
+// resolution of 100,000 on a mesh long in one direction only is a 100,000-cell domain that fits
+// the budget but takes seconds to embed under the sanitizers.
+constexpr std::int32_t kAbsurdResolution = 1000000;
 constexpr std::uint8_t kTetGen = 1, kPaper = 2, kRigid = 4, kFloatCoordinates = 8, kTwoThreads = 16;
 
 // Reads values in host byte order (little-endian on every machine this builds for); past the
@@ -167,7 +172,7 @@ FuzzCase decode(const std::uint8_t* data, size_t size) {
   o.alpha_max_deg = in.get<float>();
   o.max_deviation_pct = in.get<float>();
   const std::int32_t resolution = in.get<std::int32_t>(), iterations = in.get<std::int32_t>(), k = in.get<std::int32_t>();
-  o.resolution = resolution >= 25 && resolution < 100000 ? 1 + resolution % 24 : resolution;
+  o.resolution = resolution >= 25 && resolution < kAbsurdResolution ? 1 + resolution % 24 : resolution;
   o.max_iterations = iterations > 3 ? 1 + iterations % 3 : iterations;
   o.max_k = k > 16 ? 1 + k % 16 : k;
   c.cancel_after = in.get<std::uint8_t>();

@@ -13,7 +13,7 @@
 //   u16       #F, then #F x u16 x 3 vertex indices (not folded: out of range must be refused)
 //   bits      one per face, rigid feature or not (flag 4)
 // Folding, so that one run stays in milliseconds: #V <= 300, #F <= 600; a resolution in
-// [25, 99999] becomes 1 + r % 24 (100000 and more stay: the memory guard must refuse them);
+// [25, 999999] becomes 1 + r % 24 (a million and more stay: the memory guards must refuse them);
 // an iteration limit above 3 becomes 1 + n % 3; a largest k above 16 becomes 1 + k % 16.
 // Negative and zero values stay as they are: they must be refused.
 // Every run gets a 50 MB memory budget (the refusal for more is tested in the core's own tests).

@@ -7,8 +7,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <vcg/complex/complex.h>
-
 namespace slim::test {
 
 PluginHarness::PluginHarness() : loader_(QString(SLIM_PLUGIN_PATH)) {
@@ -37,19 +35,6 @@ QStringList PluginHarness::logLines() const {
   QStringList lines;
   log_.print(lines);
   return lines;
-}
-
-MeshModel* add_layer(MeshDocument& md, const Surface& s, const QString& label) {
-  MeshModel* m = md.addNewMesh("", label, true);
-  auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(m->cm, static_cast<size_t>(s.V.rows()));
-  for (Eigen::Index i = 0; i < s.V.rows(); ++i, ++vi)
-    vi->P() = vcg::Point3f(float(s.V(i, 0)), float(s.V(i, 1)), float(s.V(i, 2)));
-  auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(m->cm, static_cast<size_t>(s.F.rows()));
-  for (Eigen::Index i = 0; i < s.F.rows(); ++i, ++fi)
-    for (int k = 0; k < 3; ++k) fi->V(k) = &m->cm.vert[static_cast<size_t>(s.F(i, k))];
-  vcg::tri::UpdateBounding<CMeshO>::Box(m->cm);
-  vcg::tri::UpdateNormal<CMeshO>::PerFaceNormalized(m->cm);
-  return m;
 }
 
 ServerRun run_meshlabserver(const std::string& args) {

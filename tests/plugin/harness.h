@@ -14,6 +14,7 @@
 #include <common/meshmodel.h>
 
 #include "core/surface.h"
+#include "layers.h"
 
 namespace slim::test {
 
@@ -38,9 +39,6 @@ class PluginHarness {
   MeshFilterInterface* plugin_ = nullptr;
   GLLogStream log_;
 };
-
-// Adds a new layer holding the surface (float positions, as MeshLab keeps them).
-MeshModel* add_layer(MeshDocument& md, const Surface& s, const QString& label);
 
 // Result of a meshlabserver run.
 struct ServerRun {

@@ -233,3 +233,36 @@ TEST(PluginScripts, MalformedParameterListsFailWithTheirReasonAndLeaveTheDocumen
     EXPECT_TRUE(LayerSnapshot(*m) == before) << fault.name;
   }
 }
+
+TEST(PluginLayers, DeletedButNotCompactedElementsAreSkipped) {
+  // After "Delete Selected Faces" MeshLab keeps the deleted elements in its containers, flagged:
+  // both filters must see only the live ones and write their results back in the same order.
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  MeshDocument md;
+  Surface t = test::arch();
+  t.V.conservativeResize(t.V.rows() + 1, 3);
+  t.V.bottomRows(1) << 0, 0, 50;  // a stray vertex, deleted below
+  MeshModel* m = test::add_layer(md, t, "arch");
+  vcg::tri::Allocator<CMeshO>::DeleteFace(m->cm, m->cm.face[3]);
+  vcg::tri::Allocator<CMeshO>::DeleteVertex(m->cm, m->cm.vert.back());
+  const Surface live = vcgx::to_surface(m->cm);
+  ASSERT_EQ(live.F.rows(), t.F.rows() - 1);
+  ASSERT_EQ(live.V.rows(), t.V.rows() - 1);
+
+  ASSERT_TRUE(h.apply(kOverhang, md, h.defaults(kOverhang, md))) << h.lastError().toStdString();
+  const OverhangReport expected = analyse_overhang(live, OverhangOptions{Eigen::Vector3d::UnitZ(), 45.0,
+                                                                          h.defaults(kOverhang, md).getAbsPerc("plateTolerance")});
+  Eigen::Index f = 0;
+  for (const auto& face : m->cm.face) {
+    if (face.IsD()) continue;
+    EXPECT_NEAR(face.cQ(), expected.quality(f++), 1e-4);
+  }
+
+  ASSERT_TRUE(h.apply(kSlimming, md, h.defaults(kSlimming, md))) << h.lastError().toStdString();
+  const MeshModel* out = md.mm();
+  ASSERT_NE(out, m);
+  EXPECT_EQ(out->cm.fn, m->cm.fn);
+  EXPECT_EQ(out->cm.vn, m->cm.vn);
+  EXPECT_LT(analyse_overhang(vcgx::to_surface(out->cm)).risky_area, analyse_overhang(live).risky_area);
+}

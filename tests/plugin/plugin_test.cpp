@@ -3,40 +3,20 @@
 
 #include <QJsonObject>
 
-#include <common/filterscript.h>
-
 #include "core/overhang.h"
+#include "filter_checks.h"
 #include "harness.h"
 #include "support/shapes.h"
 #include "vcg_adapters/surface_adapter.h"
 
 using namespace slim;
 using slim::test::PluginHarness;
+using slim::test::positions;
 
 namespace {
 const QString kOverhang = "Overhang Analysis";
 const QString kSlimming = "Support Slimming";
 
-// Positions of a layer's vertices, in order.
-std::vector<vcg::Point3f> positions(const MeshModel& m) {
-  std::vector<vcg::Point3f> p;
-  for (const auto& v : m.cm.vert) p.push_back(v.cP());
-  return p;
-}
-
-// Stops the run at the second progress report, as a host with a cancel button would.
-int g_progress_calls = 0;
-bool cancel_soon(const int, const char*) { return ++g_progress_calls < 2; }
-
-// Reads an example .mlx the way meshlabserver does and returns the parameters of `filter`.
-RichParameterList script_params(const QString& file, const QString& filter) {
-  FilterScript script;
-  EXPECT_TRUE(script.open(QString(SLIM_SOURCE_DIR) + "/examples/" + file)) << file.toStdString();
-  for (const auto& entry : script)
-    if (entry.filterName() == filter) return entry.second;
-  ADD_FAILURE() << filter.toStdString() << " not in " << file.toStdString();
-  return {};
-}
 }  // namespace
 
 TEST(Plugin, LoadsWithItsMetadataAndFilters) {
@@ -63,19 +43,7 @@ TEST(Plugin, OverhangAnalysisWritesQualityColourAndSelection) {
 
   const OverhangReport expected = analyse_overhang(vcgx::to_surface(m->cm));
   EXPECT_NEAR(expected.risky_area, test::t_shape_arm_underside_area(), 1e-3);
-  ASSERT_TRUE(m->hasDataMask(MeshModel::MM_FACEQUALITY));
-  ASSERT_TRUE(m->hasDataMask(MeshModel::MM_FACECOLOR));
-  int selected = 0;
-  for (int f = 0; f < m->cm.fn; ++f) {
-    const CFaceO& face = m->cm.face[static_cast<size_t>(f)];
-    EXPECT_NEAR(face.cQ(), expected.quality(f), 1e-6);
-    EXPECT_EQ(face.IsS(), expected.risky[static_cast<size_t>(f)]);
-    selected += face.IsS();
-    // Risky faces sit on the red half of the ramp, safe ones on the blue half.
-    if (expected.risky[static_cast<size_t>(f)]) EXPECT_GT(face.cC()[0], face.cC()[2]);
-    else EXPECT_GE(face.cC()[2], face.cC()[0]);
-  }
-  EXPECT_EQ(selected, expected.risky_count);
+  test::expect_overhang_written(*m, expected);
   EXPECT_TRUE(h.logLines().join("\n").contains("risky area")) << h.logLines().join("\n").toStdString();
 }
 
@@ -100,7 +68,7 @@ TEST(Plugin, ExampleScriptsListEveryParameterAndRun) {
     MeshDocument md;
     test::add_layer(md, test::t_shape(), "T");
     const RichParameterList defaults = h.defaults(filter, md);
-    const RichParameterList scripted = script_params(file, filter);
+    const RichParameterList scripted = test::example_script_params(file, filter);
     // meshlabserver asserts when a script omits a parameter: the examples must list them all.
     for (const RichParameter& p : defaults) EXPECT_TRUE(scripted.hasParameter(p.name())) << p.name().toStdString();
     EXPECT_EQ(scripted.size(), defaults.size()) << file.toStdString();
@@ -147,34 +115,7 @@ TEST(Plugin, SupportSlimmingAddsASlimmedLayerAndLeavesTheInputAlone) {
   ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
 
   ASSERT_EQ(md.meshList.size(), 2);
-  EXPECT_EQ(positions(*input), original);           // the input layer is untouched
-  EXPECT_FALSE(input->hasDataMask(MeshModel::MM_FACEQUALITY));
-  MeshModel* out = md.mm();
-  ASSERT_NE(out, input);
-  EXPECT_EQ(out->label(), "bunny slimmed");
-  EXPECT_EQ(out->cm.fn, input->cm.fn);
-  EXPECT_NE(positions(*out), original);
-  ASSERT_TRUE(out->hasDataMask(MeshModel::MM_FACEQUALITY));
-  ASSERT_TRUE(out->hasDataMask(MeshModel::MM_VERTQUALITY));
-
-  // Quality, selection and vertex quality say what the core says about the new shape.
-  const Surface after = vcgx::to_surface(out->cm);
-  OverhangOptions o;
-  o.plate_tolerance = params.getAbsPerc("plateTolerance");
-  const OverhangReport now = analyse_overhang(after, o);
-  const OverhangReport before = analyse_overhang(vcgx::to_surface(input->cm), o);
-  EXPECT_LT(now.risky_area, before.risky_area);
-  int selected = 0;
-  for (int f = 0; f < out->cm.fn; ++f) {
-    EXPECT_NEAR(out->cm.face[static_cast<size_t>(f)].cQ(), now.quality(f), 1e-4);
-    selected += out->cm.face[static_cast<size_t>(f)].IsS();
-  }
-  EXPECT_NEAR(selected, now.risky_count, 3);  // float rounding right at the threshold
-  for (int v = 0; v < out->cm.vn; ++v)
-    EXPECT_NEAR(out->cm.vert[static_cast<size_t>(v)].cQ(), (out->cm.vert[static_cast<size_t>(v)].cP() - original[static_cast<size_t>(v)]).Norm(), 1e-4);
-  const QString log = h.logLines().join("\n");
-  EXPECT_TRUE(log.contains("risky area")) << log.toStdString();
-  EXPECT_TRUE(log.contains("inverted tets 0")) << log.toStdString();
+  test::expect_slimmed_layer(*input, *md.mm(), original, params.getAbsPerc("plateTolerance"), h.logLines());
 }
 
 TEST(Plugin, SupportSlimmingPaperMethodRuns) {
@@ -208,8 +149,8 @@ TEST(Plugin, CancelLeavesNoHalfBuiltLayer) {
   MeshModel* input = test::add_layer(md, test::load_mesh(test::sample_bunny_path()), "bunny");
   const auto original = positions(*input);
   const RichParameterList params = h.defaults(kSlimming, md);
-  g_progress_calls = 0;
-  EXPECT_FALSE(h.plugin()->applyFilter(h.action(kSlimming), md, params, cancel_soon));
+  test::progress_reports = 0;
+  EXPECT_FALSE(h.plugin()->applyFilter(h.action(kSlimming), md, params, test::cancel_at_second_report));
   EXPECT_TRUE(h.lastError().contains("cancelled")) << h.lastError().toStdString();
   EXPECT_EQ(md.meshList.size(), 1);
   EXPECT_EQ(md.mm(), input);

@@ -245,6 +245,12 @@ Surface arch(int arc_segments) {
   return extrude_xz(profile, ear_clip(profile), -5, 5);
 }
 
+Surface l_bracket(const LBracket& p) {
+  const std::vector<Eigen::Vector2d> profile{{0, 0}, {p.base, 0}, {p.base, p.thickness}, {p.thickness, p.thickness},
+                                             {p.thickness, p.upright}, {0, p.upright}};
+  return extrude_xz(profile, ear_clip(profile), -p.width / 2, p.width / 2);
+}
+
 }  // namespace slim::test
 
 namespace slim::test {

@@ -64,6 +64,15 @@ Surface mushroom(int segments = 48);
 // semicircular opening of radius 10 (its upper half is the overhang).
 Surface arch(int arc_segments = 24);
 
+// An L-bracket: a base plate [0, base] x [-width/2, width/2] x [0, thickness] on the plate and an
+// upright [0, thickness] x ... x [0, upright] at x = 0, one closed manifold. Its largest flat face
+// is the base's underside (base x width), then the upright's back (upright x width), then the
+// L-shaped sides. Nothing overhangs as built.
+struct LBracket {
+  double base = 50, upright = 30, width = 30, thickness = 5;
+};
+Surface l_bracket(const LBracket& p = {});
+
 }  // namespace slim::test
 
 namespace slim::test {

@@ -1,0 +1,305 @@
+#include "filters.h"
+
+#include <algorithm>
+#include <exception>
+
+#include <vcg/complex/append.h>
+
+#include "core/overhang.h"
+#include "core/slimming.h"
+#include "vcg_adapters/surface_adapter.h"
+
+namespace slim::plugin {
+namespace {
+
+// ---- parameters shared by the filters --------------------------------------------------------
+
+void add_print_parameters(const MeshModel& m, RichParameterList& par) {
+  const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
+  par.addParam(meshlab_api::RichDirection(
+      "printDirection", vcg::Point3f(0, 0, 1), "Print direction",
+      "The direction the part grows in while printing (the build plate's normal). It need not be unit length."));
+  par.addParam(RichFloat("alphaMax", 45.0f, "Self-supporting angle (deg)",
+                         "The largest overhang, measured from the vertical, that prints without support. "
+                         "Faces that lean out further are risky. Must be in [0, 90)."));
+  par.addParam(RichAbsPerc("plateTolerance", 0.001f * diag, 0.0f, diag, "Build plate tolerance",
+                           "Faces whose three vertices all lie within this distance of the lowest point along "
+                           "the print direction rest on the build plate and are never risky."));
+}
+
+slim::OverhangOptions overhang_options(const RichParameterList& par) {
+  slim::OverhangOptions o;
+  const auto d = par.getPoint3m("printDirection");
+  o.print_direction = Eigen::Vector3d(d[0], d[1], d[2]);
+  o.alpha_max_deg = par.getFloat("alphaMax");
+  o.plate_tolerance = par.getAbsPerc("plateTolerance");
+  return o;
+}
+
+// The filter's parameters -> the core's options. Ranges are checked by the core, which says what
+// is wrong in words the log can show.
+slim::SlimmingOptions slimming_options(const RichParameterList& par) {
+  slim::SlimmingOptions o;
+  const slim::OverhangOptions overhang = overhang_options(par);
+  o.print_direction = overhang.print_direction;
+  o.alpha_max_deg = overhang.alpha_max_deg;
+  o.plate_tolerance = overhang.plate_tolerance;
+  o.resolution = par.getInt("resolution");
+  o.domain = par.getEnum("domain") == 1 ? slim::DomainKind::TetGen : slim::DomainKind::Voxel;
+  o.method = par.getEnum("method") == 1 ? slim::SlimmingMethod::Paper : slim::SlimmingMethod::Coherent;
+  o.max_iterations = par.getInt("maxIterations");
+  o.max_deviation_pct = par.getFloat("maxDeviation");
+  o.max_k = par.getInt("maxK");
+  return o;
+}
+
+// The current layer, refused when there is none or it is a point cloud.
+MeshModel& current_triangle_mesh(MeshDocument& md) {
+  MeshModel* m = md.mm();
+  if (m == nullptr) throw FilterFailure("there is no current mesh");
+  if (m->cm.fn == 0) throw FilterFailure("the mesh has no faces; it needs a triangle mesh, not a point cloud");
+  return *m;
+}
+
+// Logged by both filters when the mesh is inside out (slim::inside_out).
+const char* const kInsideOutNotice =
+    "the mesh is inside out (closed, with every normal pointing inwards): it was analysed with its faces turned "
+    "over; to fix the layer itself use Filters > Normals, Curvatures and Orientation > Invert Faces Orientation";
+
+// ---- Overhang Analysis -----------------------------------------------------------------------
+
+const char* const kOverhangAnalysisInfo =
+    "Finds the faces that would need support material when the mesh is 3D printed along the given "
+    "<i>print direction</i>: a face is <b>risky</b> when <i>n&middot;d + sin(&alpha;<sub>max</sub>) &lt; 0</i>, "
+    "that is, when it overhangs more than the self-supporting angle &alpha;<sub>max</sub> (measured from the "
+    "vertical; 45&deg; is the usual rule). Faces lying on the build plate are carried by it and never count.<br>"
+    "The geometry is not changed. Each face gets quality <i>n&middot;d + sin(&alpha;<sub>max</sub>)</i> "
+    "(negative means risky; plate faces get +1), coloured on a fixed ramp from -1 (red) to +1 (blue) so that "
+    "colours compare across meshes; the risky faces can be selected. The log reports the risky area.<br>"
+    "From <i>Direct Computation of Minimal Rotation for Support Slimming</i>, &sect;I-A.";
+
+void add_overhang_analysis_parameters(const MeshModel& m, RichParameterList& par) {
+  add_print_parameters(m, par);
+  par.addParam(RichBool("selectRisky", true, "Select risky faces",
+                        "Replace the current face selection with the risky faces."));
+  par.addParam(RichBool("colorize", true, "Colorize",
+                        "Colour the faces by their quality on a fixed ramp: red (-1) is the worst overhang, "
+                        "green (0) the threshold, blue (+1) safe."));
+}
+
+void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
+  MeshModel& mm = current_triangle_mesh(md);
+  const slim::Surface surface = slim::vcgx::to_surface(mm.cm);
+  // The rule reads the outside from the normals (see slimming.h): an inside-out mesh is analysed
+  // turned over; faces that disagree are analysed as they are, with a warning.
+  const slim::EdgeTopology edges = slim::edge_topology(surface);
+  const bool insideOut = slim::inside_out(surface, edges);
+  const slim::OverhangReport report =
+      slim::analyse_overhang(insideOut ? slim::flipped(surface) : surface, overhang_options(par));
+
+  // Only now that the analysis succeeded is the layer touched.
+  const bool colorize = par.getBool("colorize");
+  const bool select = par.getBool("selectRisky");
+  mm.updateDataMask(MeshModel::MM_FACEQUALITY | (colorize ? int(MeshModel::MM_FACECOLOR) : 0));
+  slim::vcgx::write_face_results(mm.cm, report.quality, colorize, select ? &report.risky : nullptr);
+
+  run.info(QString::asprintf(
+      "Overhang Analysis: %lld risky faces of %d; risky area %.6g mm^2 (%.2f%% of %.6g mm^2); "
+      "%lld faces rest on the build plate",
+      static_cast<long long>(report.risky_count), mm.cm.fn, report.risky_area, 100.0 * report.risky_share(),
+      report.total_area, static_cast<long long>(report.plate_count)));
+  if (insideOut) run.warning(QString("Overhang Analysis: ") + kInsideOutNotice);
+  if (edges.flipped_edges > 0)
+    run.warning(QString::asprintf(
+        "Overhang Analysis: the faces are not consistently oriented (%s; %lld such edges), so some faces may be "
+        "coloured as risky or safe wrongly; fix it with Filters > Normals, Curvatures and Orientation > Re-Orient "
+        "all faces coherently",
+        edges.first_flipped.c_str(), static_cast<long long>(edges.flipped_edges)));
+  run.outputs["risky_area"] = report.risky_area;
+  run.outputs["risky_faces"] = static_cast<qlonglong>(report.risky_count);
+  run.outputs["total_area"] = report.total_area;
+}
+
+// ---- Support Slimming ------------------------------------------------------------------------
+
+const char* const kSupportSlimmingInfo =
+    "Reshapes the mesh so that it needs less support material when 3D printed along the <i>print "
+    "direction</i>, while keeping it as rigid as possible. The mesh is embedded in a tetrahedral domain "
+    "made from voxels; each iteration rotates every tetrahedron that holds overhanging (risky) faces by the "
+    "smallest rotation that makes them self-supporting, then blends the tetrahedra back together with an "
+    "as-rigid-as-possible solve. The part's base stays on the build plate.<br>"
+    "The result is a <b>new layer</b>; the input layer is not changed. On the result, face quality is "
+    "<i>n&middot;d + sin(&alpha;<sub>max</sub>)</i> (negative means still risky), coloured on the fixed "
+    "ramp of <i>Overhang Analysis</i>; the faces that are still risky are selected; vertex quality is the "
+    "displacement in mesh units. The run stops at the iteration limit, when the risky area stops falling, "
+    "or before any vertex moves further than the deviation budget.<br>"
+    "From <i>Direct Computation of Minimal Rotation for Support Slimming</i> (incremental LP on the Gauss "
+    "sphere, area-weighted K-means proxies, &sect;IV-B rigid features).";
+
+void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par) {
+  const slim::SlimmingOptions defaults;
+  add_print_parameters(m, par);
+  par.addParam(RichInt("resolution", defaults.resolution, "Voxel resolution",
+                       "Number of voxel cells along the longest side of the bounding box. The tetrahedral "
+                       "domain is made from these cells; finer follows smaller features but runs slower."));
+  par.addParam(RichEnum("domain", 0, QStringList() << "Voxel" << "TetGen", "Domain",
+                        "Voxel: tetrahedra from a voxel grid aligned with the print direction (works on open and "
+                        "non-manifold meshes). TetGen: a constrained tetrahedralization of the surface; needs a "
+                        "closed, clean, non-self-intersecting mesh."));
+  par.addParam(RichEnum("method", 0, QStringList() << "Coherent" << "Paper", "Method",
+                        "Coherent: the default, with coherent rotations and a stiffer response. Paper: the "
+                        "published method as written, for comparison."));
+  par.addParam(RichInt("maxIterations", defaults.max_iterations, "Max iterations",
+                       "The largest number of local/global iterations. 0 only embeds the mesh and writes it back."));
+  par.addParam(RichFloat("maxDeviation", float(defaults.max_deviation_pct), "Deviation budget (%)",
+                         "The largest distance any vertex may move, as a percentage of the bounding box "
+                         "diagonal. The iteration that would exceed it is undone and the run stops."));
+  par.addParam(RichInt("maxK", defaults.max_k, "Max proxies per tetrahedron",
+                       "When no single rotation can make every face in a tetrahedron self-supporting, its faces "
+                       "are clustered into at most this many proxy normals (area-weighted K-means)."));
+  par.addParam(RichBool("preserveSelection", false, "Preserve selection as rigid features",
+                        "Each connected piece of the current face selection moves as one rigid body, so a "
+                        "feature you care about keeps its shape."));
+}
+
+void apply_support_slimming(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
+  MeshModel& input = current_triangle_mesh(md);
+  slim::SlimmingOptions options = slimming_options(par);
+  if (par.getBool("preserveSelection")) {
+    options.rigid_features = slim::vcgx::selected_faces(input.cm);
+    if (std::none_of(options.rigid_features.begin(), options.rigid_features.end(), [](bool b) { return b; }))
+      throw FilterFailure("'Preserve selection as rigid features' is on but no face is selected; "
+                          "select the features to keep rigid, or turn the option off");
+  }
+  if (run.progress != nullptr) {
+    // MeshLab's progress bar; a host whose callback returns false cancels the run.
+    options.progress = [cb = run.progress](double fraction, const std::string& message) {
+      return cb(static_cast<int>(100.0 * fraction), message.c_str());
+    };
+  }
+
+  // Everything is computed before the document is touched: a failure or a cancel leaves no layer.
+  const slim::SlimmingResult r = slim::slim_supports(slim::vcgx::to_surface(input.cm), options);
+
+  MeshModel* output = md.addNewMesh(QString(), input.label() + " slimmed", true);
+  try {
+    output->updateDataMask(&input);
+    vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(output->cm, input.cm);
+    output->cm.Tr = input.cm.Tr;
+    output->updateDataMask(MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_VERTQUALITY);
+    slim::vcgx::write_positions(output->cm, r.surface.V);
+    slim::vcgx::write_face_results(output->cm, r.after.quality, true, &r.after.risky);
+    slim::vcgx::write_vertex_quality(output->cm, r.displacement);
+  } catch (...) {
+    meshlab_api::delete_layer(md, output);  // never leave a half-built layer behind
+    md.setCurrentMesh(input.id());
+    throw;
+  }
+
+  const slim::IterationStats& last = r.history.back();
+  run.info(QString::asprintf(
+      "Support Slimming: risky area %.6g -> %.6g mm^2 (%.2f%% -> %.2f%% of the surface, %.1f%% less)",
+      r.before.risky_area, r.after.risky_area, 100.0 * r.before.risky_share(), 100.0 * r.after.risky_share(),
+      r.before.risky_area > 0 ? 100.0 * (1.0 - r.after.risky_area / r.before.risky_area) : 0.0));
+  run.info(QString::asprintf("Support Slimming: %d iterations in %.2f s (%s); domain %d vertices, %d tets; solver %s",
+                             r.iterations, r.seconds, r.stop_reason.c_str(), r.domain_vertices, r.domain_tets,
+                             r.solver_backend.c_str()));
+  run.info(QString::asprintf(
+      "Support Slimming: displacement max %.4g, mean %.4g mm; volume %.6g -> %.6g mm^3 (%+.2f%%); "
+      "AE %.2f%%; inverted tets %d",
+      last.max_displacement, last.mean_displacement, r.volume_before, r.volume_after,
+      r.volume_before != 0 ? 100.0 * (r.volume_after / r.volume_before - 1.0) : 0.0,
+      100.0 * last.approximation_error, last.inverted_tets));
+  if (r.inside_out) run.warning(QString("Support Slimming: ") + kInsideOutNotice);
+  run.outputs["risky_area_before"] = r.before.risky_area;
+  run.outputs["risky_area_after"] = r.after.risky_area;
+  run.outputs["iterations"] = r.iterations;
+  run.outputs["max_displacement"] = last.max_displacement;
+}
+
+}  // namespace
+
+// ---- the table -------------------------------------------------------------------------------
+
+const std::vector<FilterDefinition>& filter_definitions() {
+  static const std::vector<FilterDefinition> filters = {
+      {"Overhang Analysis", kOverhangAnalysisInfo, MenuCategory::Quality,
+       MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_FACEFLAGSELECT,
+       add_overhang_analysis_parameters, apply_overhang_analysis},
+      {"Support Slimming", kSupportSlimmingInfo, MenuCategory::Smoothing,
+       MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
+       add_support_slimming_parameters, apply_support_slimming},
+  };
+  return filters;
+}
+
+const FilterDefinition* find_filter(int id) {
+  const auto& filters = filter_definitions();
+  return id >= 0 && id < static_cast<int>(filters.size()) ? &filters[static_cast<size_t>(id)] : nullptr;
+}
+
+// ---- what every filter shares ----------------------------------------------------------------
+
+RichParameterList default_parameters(const FilterDefinition& filter, const MeshModel& m) {
+  RichParameterList par;
+  filter.add_parameters(m, par);
+  return par;
+}
+
+QString parameter_problem(const FilterDefinition& filter, const MeshDocument& md, const RichParameterList& par) {
+  // A hand-written .mlx can drop a parameter, give it another type or an enum index out of range.
+  // MeshLab's typed getters assert (abort the host) on a wrong type and throw on a missing name,
+  // so everything is compared with our own list before any value is read.
+  if (md.mm() == nullptr) return {};
+  const RichParameterList expected = default_parameters(filter, *md.mm());
+  for (const RichParameter& want : expected) {
+    if (!par.hasParameter(want.name()))
+      return QString("the parameter '%1' (%2) is missing; a script must list every parameter of the filter")
+          .arg(want.name(), want.fieldDescription());
+    const RichParameter& got = par.getParameterByName(want.name());
+    if (!meshlab_api::same_parameter_type(got, want))
+      return QString("the parameter '%1' (%2) is a %3, but it must be a %4")
+          .arg(want.name(), want.fieldDescription(), got.stringType(), want.stringType());
+    if (const auto* wantEnum = dynamic_cast<const RichEnum*>(&want)) {
+      const int count = wantEnum->enumvalues.size();
+      const int index = meshlab_api::enum_index(got);
+      if (index < 0 || index >= count)
+        return QString("the parameter '%1' (%2) is %3, but it must be one of 0..%4 (%5)")
+            .arg(want.name(), want.fieldDescription())
+            .arg(index)
+            .arg(count - 1)
+            .arg(wantEnum->enumvalues.join(", "));
+    }
+  }
+  return {};
+}
+
+FilterOutcome run_filter(const FilterDefinition& filter, MeshDocument& md, const RichParameterList& par,
+                         vcg::CallBackPos* progress, const LogLine& log) {
+  FilterOutcome outcome;
+  const auto fail = [&](const QString& reason) {
+    outcome.failure = filter.name + ": " + reason;
+    log(GLLogStream::WARNING, outcome.failure);
+  };
+  try {
+    const QString problem = parameter_problem(filter, md, par);
+    if (!problem.isEmpty()) {
+      fail(problem);
+      return outcome;
+    }
+    FilterRun run{log, progress, {}};
+    filter.apply(md, par, run);
+    outcome.outputs = std::move(run.outputs);
+  } catch (const FilterFailure& e) {
+    fail(e.reason);
+  } catch (const slim::Cancelled&) {
+    fail("cancelled; the document is unchanged");
+  } catch (const std::exception& e) {
+    fail(QString::fromUtf8(e.what()));
+  } catch (...) {
+    fail("unexpected internal error");
+  }
+  return outcome;
+}
+
+}  // namespace slim::plugin

@@ -1,0 +1,83 @@
+#include "filter_checks.h"
+
+#include <gtest/gtest.h>
+
+#include <common/filterscript.h>
+
+#include "vcg_adapters/surface_adapter.h"
+
+namespace slim::test {
+
+std::vector<vcg::Point3f> positions(const MeshModel& m) {
+  std::vector<vcg::Point3f> p;
+  for (const auto& v : m.cm.vert) p.push_back(v.cP());
+  return p;
+}
+
+void expect_overhang_written(const MeshModel& m, const OverhangReport& expected) {
+  ASSERT_TRUE(m.hasDataMask(MeshModel::MM_FACEQUALITY));
+  ASSERT_TRUE(m.hasDataMask(MeshModel::MM_FACECOLOR));
+  ASSERT_EQ(static_cast<size_t>(m.cm.fn), expected.risky.size());
+  int selected = 0;
+  for (int f = 0; f < m.cm.fn; ++f) {
+    const CFaceO& face = m.cm.face[static_cast<size_t>(f)];
+    EXPECT_NEAR(face.cQ(), expected.quality(f), 1e-5);
+    EXPECT_EQ(face.IsS(), expected.risky[static_cast<size_t>(f)]);
+    selected += face.IsS();
+    // Faces near the threshold are green, with neither red nor blue.
+    if (expected.quality(f) < -0.1) {
+      EXPECT_GT(face.cC()[0], face.cC()[2]);
+    } else if (expected.quality(f) > 0.1) {
+      EXPECT_GT(face.cC()[2], face.cC()[0]);
+    }
+  }
+  EXPECT_EQ(selected, expected.risky_count);
+}
+
+void expect_slimmed_layer(const MeshModel& input, const MeshModel& out, const std::vector<vcg::Point3f>& original,
+                          double plate_tolerance, const QStringList& log) {
+  ASSERT_NE(&out, &input);
+  EXPECT_EQ(positions(input), original);  // the input layer is untouched
+  EXPECT_FALSE(input.hasDataMask(MeshModel::MM_FACEQUALITY));
+  EXPECT_EQ(out.label(), input.label() + " slimmed");
+  EXPECT_EQ(out.cm.fn, input.cm.fn);
+  ASSERT_EQ(out.cm.vn, input.cm.vn);
+  EXPECT_NE(positions(out), original);
+  ASSERT_TRUE(out.hasDataMask(MeshModel::MM_FACEQUALITY));
+  ASSERT_TRUE(out.hasDataMask(MeshModel::MM_VERTQUALITY));
+
+  // Quality, selection and vertex quality say what the core says about the new shape.
+  OverhangOptions o;
+  o.plate_tolerance = plate_tolerance;
+  const OverhangReport now = analyse_overhang(vcgx::to_surface(out.cm), o);
+  const OverhangReport before = analyse_overhang(vcgx::to_surface(input.cm), o);
+  EXPECT_LT(now.risky_area, before.risky_area);
+  int selected = 0;
+  for (int f = 0; f < out.cm.fn; ++f) {
+    EXPECT_NEAR(out.cm.face[static_cast<size_t>(f)].cQ(), now.quality(f), 1e-4);
+    selected += out.cm.face[static_cast<size_t>(f)].IsS();
+  }
+  EXPECT_NEAR(selected, now.risky_count, 3);  // float rounding right at the threshold
+  for (int v = 0; v < out.cm.vn; ++v) {
+    const auto& vert = out.cm.vert[static_cast<size_t>(v)];
+    EXPECT_NEAR(vert.cQ(), (vert.cP() - original[static_cast<size_t>(v)]).Norm(), 1e-4);
+  }
+  const QString text = log.join("\n");
+  EXPECT_TRUE(text.contains("risky area")) << text.toStdString();
+  EXPECT_TRUE(text.contains("inverted tets 0")) << text.toStdString();
+}
+
+RichParameterList example_script_params(const QString& file, const QString& filter) {
+  FilterScript script;
+  EXPECT_TRUE(script.open(QString(SLIM_SOURCE_DIR) + "/examples/" + file)) << file.toStdString();
+  for (const auto& entry : script)
+    if (entry.filterName() == filter) return entry.second;
+  ADD_FAILURE() << filter.toStdString() << " not in " << file.toStdString();
+  return {};
+}
+
+int progress_reports = 0;
+
+bool cancel_at_second_report(int, const char*) { return ++progress_reports < 2; }
+
+}  // namespace slim::test

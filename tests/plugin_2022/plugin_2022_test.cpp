@@ -1,0 +1,188 @@
+// The plugin built for MeshLab 2022.02, loaded with QPluginLoader and run the way that MeshLab
+// runs filters, on the sample bunny. The invariants are those of the 2020.09 harness
+// (tests/plugin/plugin_test.cpp): MeshLab accepts the plugin, Overhang Analysis writes quality,
+// colour and selection without moving a vertex, Support Slimming adds a new layer with less risky
+// area and leaves the input alone, and every refusal says why, in the error and in the log, with
+// the document untouched. Only the API differs: errors arrive as MLException.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <vector>
+
+#include <common/plugins/meshlab_plugin_type.h>
+#include <common/plugins/plugin_manager.h>
+
+#include "core/overhang.h"
+#include "filter_checks.h"
+#include "harness.h"
+#include "support/shapes.h"
+#include "vcg_adapters/surface_adapter.h"
+
+using namespace slim;
+using slim::test::PluginHarness;
+using slim::test::positions;
+
+namespace {
+const QString kOverhang = "Overhang Analysis";
+const QString kSlimming = "Support Slimming";
+const QString kOrientation = "Print Orientation";  // issue 8; tested once the plugin has it
+
+}  // namespace
+
+// Every test starts with the plugin loaded and an empty document.
+class Plugin2022 : public ::testing::Test {
+ protected:
+  void SetUp() override { ASSERT_TRUE(h.ok()) << h.error().toStdString(); }
+  MeshModel* add_bunny() { return test::add_layer(md, test::load_mesh(test::sample_bunny_path()), "bunny"); }
+
+  PluginHarness h;
+  MeshDocument md;
+};
+
+TEST_F(Plugin2022, MeshLabAcceptsThePlugin) {
+  // MeshLab's own check before it loads a plugin, compiled into libmeshlab-common.so with that
+  // MeshLab's version: a Qt plugin, a MeshLab plugin, the same version and precision, every filter
+  // with a class and an arity. It throws MLException with the reason otherwise.
+  try {
+    EXPECT_TRUE(PluginManager::checkPlugin(SLIM_PLUGIN_PATH).isFilterPlugin());
+  } catch (const MLException& e) {
+    FAIL() << e.what();
+  }
+
+  EXPECT_EQ(h.plugin()->getMLVersion().first, "2022.02");
+  EXPECT_FALSE(h.plugin()->getMLVersion().second);  // float, like Debian's MeshLab
+  const QJsonObject meta = h.metaData();
+  EXPECT_EQ(meta.value("name").toString(), "Support Slimming");
+  EXPECT_EQ(meta.value("license").toString(), "GPL-3.0-or-later");
+  EXPECT_EQ(meta.value("meshlabVersion").toString(), "2022.02");
+  for (const QString& name : {kOverhang, kSlimming}) {
+    const QAction* a = h.action(name);
+    ASSERT_NE(a, nullptr) << name.toStdString();
+    EXPECT_NE(h.plugin()->getClass(a), FilterPlugin::Generic);
+    EXPECT_EQ(h.plugin()->filterArity(a), FilterPlugin::SINGLE_MESH);
+    EXPECT_FALSE(h.plugin()->filterInfo(a).isEmpty());
+  }
+}
+
+TEST_F(Plugin2022, OverhangAnalysisMarksTheBunnysRiskyFacesAndMovesNothing) {
+  MeshModel* m = add_bunny();
+  const auto original = positions(*m);
+  const RichParameterList params = h.defaults(kOverhang, md);
+  ASSERT_TRUE(h.apply(kOverhang, md, params)) << h.lastError().toStdString();
+
+  OverhangOptions o;
+  o.plate_tolerance = params.getAbsPerc("plateTolerance");
+  const OverhangReport expected = analyse_overhang(vcgx::to_surface(m->cm), o);
+  ASSERT_GT(expected.risky_count, 0);  // the bunny's chin and ears overhang
+  EXPECT_EQ(positions(*m), original);
+  EXPECT_EQ(md.meshNumber(), 1u);
+  test::expect_overhang_written(*m, expected);
+  // The named results MeshLab 2022.02 (and pymeshlab) hand back.
+  ASSERT_EQ(h.outputs().count("risky_area"), 1u);
+  EXPECT_NEAR(h.outputs().at("risky_area").toDouble(), expected.risky_area, 1e-6 * expected.total_area);
+  EXPECT_EQ(h.outputs().at("risky_faces").toLongLong(), expected.risky_count);
+  EXPECT_TRUE(h.logLines().join("\n").contains("risky area")) << h.logLines().join("\n").toStdString();
+}
+
+TEST_F(Plugin2022, SupportSlimmingAddsASlimmedLayerAndLeavesTheInputAlone) {
+  MeshModel* input = add_bunny();
+  const auto original = positions(*input);
+  const int input_mask = input->dataMask();
+  const RichParameterList params = h.defaults(kSlimming, md);
+  ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
+
+  ASSERT_EQ(md.meshNumber(), 2u);
+  EXPECT_EQ(input->dataMask(), input_mask);
+  test::expect_slimmed_layer(*input, *md.mm(), original, params.getAbsPerc("plateTolerance"), h.logLines());
+  EXPECT_LT(h.outputs().at("risky_area_after").toDouble(), h.outputs().at("risky_area_before").toDouble());
+}
+
+TEST_F(Plugin2022, BadParametersFailWithTheirReasonAndTouchNothing) {
+  MeshModel* m = add_bunny();
+  const auto original = positions(*m);
+  const int mask = m->dataMask();
+  struct Case {
+    const char* what;
+    QString filter;
+    std::function<void(RichParameterList&)> spoil;
+    QString reason;  // must appear in the MLException and in the log
+  };
+  const std::vector<Case> cases = {
+      {"angle out of range", kOverhang, [](RichParameterList& p) { p.setValue("alphaMax", FloatValue(95.0f)); }, "[0, 90)"},
+      {"no print direction", kOverhang,
+       [](RichParameterList& p) { p.setValue("printDirection", Point3fValue(vcg::Point3f(0, 0, 0))); }, "print direction"},
+      {"enum out of range", kSlimming, [](RichParameterList& p) { p.setValue("method", IntValue(7)); }, "must be one of 0..1"},
+      {"memory guard", kSlimming, [](RichParameterList& p) { p.setValue("resolution", IntValue(100000)); }, "resolution"},
+      {"rigid features without a selection", kSlimming,
+       [](RichParameterList& p) { p.setValue("preserveSelection", BoolValue(true)); }, "no face is selected"},
+  };
+  for (const Case& c : cases) {
+    RichParameterList params = h.defaults(c.filter, md);
+    c.spoil(params);
+    EXPECT_FALSE(h.apply(c.filter, md, params)) << c.what;
+    EXPECT_TRUE(h.lastError().startsWith(c.filter + ": ")) << h.lastError().toStdString();
+    EXPECT_TRUE(h.lastError().contains(c.reason)) << c.what << ": " << h.lastError().toStdString();
+    EXPECT_TRUE(h.logLines().join("\n").contains(h.lastError())) << c.what;
+    EXPECT_EQ(md.meshNumber(), 1u) << c.what;
+    EXPECT_EQ(md.mm(), m) << c.what;
+    EXPECT_EQ(positions(*m), original) << c.what;
+    EXPECT_EQ(m->dataMask(), mask) << c.what;
+  }
+}
+
+TEST_F(Plugin2022, AScriptMissingAParameterIsRefusedByName) {
+  add_bunny();
+  const RichParameterList defaults = h.defaults(kOverhang, md);
+  RichParameterList partial;
+  for (const RichParameter& p : defaults)
+    if (p.name() != "alphaMax") partial.addParam(p);
+  EXPECT_FALSE(h.apply(kOverhang, md, partial));
+  EXPECT_TRUE(h.lastError().contains("'alphaMax'")) << h.lastError().toStdString();
+  EXPECT_TRUE(h.lastError().contains("missing")) << h.lastError().toStdString();
+}
+
+TEST_F(Plugin2022, OurExampleScriptsRunThroughMeshLab2022sParser) {
+  // examples/*.mlx were written for 2020.09, whose RichPoint3f 2022.02 reads as a RichPosition.
+  for (const auto& [file, filter] : {std::make_pair(QString("overhang_analysis.mlx"), kOverhang),
+                                     std::make_pair(QString("support_slimming.mlx"), kSlimming)}) {
+    MeshDocument doc;
+    test::add_layer(doc, test::t_shape(), "T");
+    const RichParameterList scripted = test::example_script_params(file, filter);
+    EXPECT_EQ(scripted.size(), h.defaults(filter, doc).size()) << file.toStdString();
+    EXPECT_TRUE(h.apply(filter, doc, scripted)) << file.toStdString() << ": " << h.lastError().toStdString();
+  }
+}
+
+TEST_F(Plugin2022, APointCloudFailsWithAClearMessage) {
+  MeshModel* m = md.addNewMesh(QString(), "cloud", true);
+  vcg::tri::Allocator<CMeshO>::AddVertices(m->cm, 3);
+  for (const QString& filter : {kOverhang, kSlimming}) {
+    EXPECT_FALSE(h.apply(filter, md, h.defaults(filter, md)));
+    EXPECT_TRUE(h.lastError().contains("no faces")) << h.lastError().toStdString();
+    EXPECT_EQ(md.meshNumber(), 1u);
+  }
+  EXPECT_EQ(m->cm.vn, 3);
+}
+
+TEST_F(Plugin2022, CancelLeavesNoHalfBuiltLayer) {
+  MeshModel* input = add_bunny();
+  const auto original = positions(*input);
+  test::progress_reports = 0;
+  EXPECT_FALSE(h.apply(kSlimming, md, h.defaults(kSlimming, md), test::cancel_at_second_report));
+  EXPECT_GE(test::progress_reports, 2);
+  EXPECT_TRUE(h.lastError().contains("cancelled")) << h.lastError().toStdString();
+  EXPECT_EQ(md.meshNumber(), 1u);
+  EXPECT_EQ(md.mm(), input);
+  EXPECT_EQ(positions(*input), original);
+}
+
+// Hook for issue 8: once filters.cpp lists Print Orientation, this runs it on the bunny through
+// the 2022.02 API. Wire its own invariants here (the lead): the orientation it reports, the risky
+// area it leads to, what it does to the layer.
+TEST_F(Plugin2022, PrintOrientationRunsOnTheBunny) {
+  if (h.action(kOrientation) == nullptr) GTEST_SKIP() << "this build has no Print Orientation filter yet";
+  MeshModel* input = add_bunny();
+  ASSERT_TRUE(h.apply(kOrientation, md, h.defaults(kOrientation, md))) << h.lastError().toStdString();
+  EXPECT_EQ(input->cm.fn, md.mm()->cm.fn);  // orienting a part never adds or removes faces
+  EXPECT_FALSE(h.logLines().isEmpty());
+}
