@@ -1,5 +1,6 @@
 // support-slim IN -o OUT [options]: Support Slimming without MeshLab. Thin: parse, load, call the
 // core, save, summarise. Exits 0 on success, 1 with a one-line reason otherwise.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <vector>
 
 
+#include "core/orientation.h"
 #include "core/slimming.h"
 #include "vcg_adapters/mesh_io.h"
 
@@ -18,8 +20,9 @@ const char* kUsage = R"(usage: support-slim IN -o OUT [options]
 
 Reshapes a mesh so that it needs less support material when 3D printed (local/global
 minimal-rotation optimizer). Reads and writes PLY, STL, OBJ and OFF; OUT is written in the input's
-frame (no rescaling, no recentring). A PLY output carries face quality n.d + sin(alpha_max)
-(negative = still risky), its colour ramp, and the still-risky faces as selected.
+frame (no rescaling, no recentring), or with --orient in the print pose the search chose. A PLY
+output carries face quality n.d + sin(alpha_max) (negative = still risky), its colour ramp, and
+the still-risky faces as selected.
 
 options:
   -o, --output FILE        where to write the result (required)
@@ -35,6 +38,12 @@ options:
   --max-k K                largest number of K-means proxies per tet                 [8]
   --features FILE          rigid features: a text file of face ids (0-based)
   --features-from-mesh     rigid features: the faces selected in IN (PLY face flags)
+  --orient                 first turn the part into the print pose that needs the least support
+                           (estimated), then slim it there; OUT is in that pose, +Z up, resting
+                           on z = 0, and the displacement counts only the deformation
+  --orient-effort fast|normal|thorough
+                           how many directions the orientation search tries         [normal]
+  --oriented-output FILE   with --orient: also write the oriented part before slimming
   --threads N              OpenMP threads (the result does not depend on it)
   --quiet                  no progress on stderr
   -h, --help               this text
@@ -88,8 +97,9 @@ std::vector<bool> read_face_ids(const std::string& path, Eigen::Index faces) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
-  std::string in, out, features_file;
-  bool features_from_mesh = false, quiet = false;
+  std::string in, out, features_file, oriented_out;
+  bool features_from_mesh = false, quiet = false, orient = false, dir_given = false;
+  slim::OrientationEffort effort = slim::OrientationEffort::Normal;
   slim::SlimmingOptions o;
   auto value = [&](size_t& i) -> const std::string& {
     if (i + 1 >= args.size()) die(args[i] + " needs a value");
@@ -102,7 +112,7 @@ int main(int argc, char** argv) {
       return 0;
     } else if (a == "-o" || a == "--output") out = value(i);
     else if (a == "--angle") o.alpha_max_deg = number(a, value(i));
-    else if (a == "--dir") o.print_direction = vector3(a, value(i));
+    else if (a == "--dir") o.print_direction = vector3(a, value(i)), dir_given = true;
     else if (a == "--plate-tolerance") o.plate_tolerance = number(a, value(i));
     else if (a == "--resolution") o.resolution = integer(a, value(i));
     else if (a == "--domain") {
@@ -120,6 +130,14 @@ int main(int argc, char** argv) {
     else if (a == "--max-k") o.max_k = integer(a, value(i));
     else if (a == "--features") features_file = value(i);
     else if (a == "--features-from-mesh") features_from_mesh = true;
+    else if (a == "--orient") orient = true;
+    else if (a == "--orient-effort") {
+      const std::string& v = value(i);
+      if (v == "fast") effort = slim::OrientationEffort::Fast;
+      else if (v == "normal") effort = slim::OrientationEffort::Normal;
+      else if (v == "thorough") effort = slim::OrientationEffort::Thorough;
+      else die("--orient-effort expects fast, normal or thorough, got '" + v + "'");
+    } else if (a == "--oriented-output") oriented_out = value(i);
     else if (a == "--threads") o.threads = integer(a, value(i));
     else if (a == "--quiet") quiet = true;
     else if (!a.empty() && a[0] == '-') die("unknown option " + a + " (see --help)");
@@ -128,10 +146,32 @@ int main(int argc, char** argv) {
   }
   if (in.empty()) die("no input mesh given (see --help)");
   if (out.empty()) die("no output given: use -o OUT");
+  if (orient && dir_given) die("--orient chooses the print direction itself: leave out --dir");
+  if (!oriented_out.empty() && !orient) die("--oriented-output needs --orient");
 
   try {
     slim::vcgx::FaceExtras extras;
-    const slim::Surface mesh = slim::vcgx::load_surface(in, &extras);
+    slim::Surface mesh = slim::vcgx::load_surface(in, &extras);
+    // Orientation first: the part turns rigidly into its print pose and is slimmed there, so the
+    // slimming's displacement and volume figures count the deformation alone.
+    slim::OrientationResult orientation;
+    if (orient) {
+      slim::OrientationOptions oo = slim::with_effort(effort);
+      oo.alpha_max_deg = o.alpha_max_deg;
+      oo.plate_tolerance = o.plate_tolerance;
+      oo.threads = o.threads;
+      if (!quiet) std::fprintf(stderr, "[orient] searching the print direction\n");
+      orientation = slim::optimize_orientation(mesh, oo);
+      mesh = slim::apply_orientation(mesh, orientation.rotation);
+      if (o.plate_tolerance < 0) o.plate_tolerance = orientation.plate_tolerance;  // one plate rule for both steps
+      if (!oriented_out.empty()) {
+        slim::OverhangOptions ao;
+        ao.alpha_max_deg = o.alpha_max_deg;
+        ao.plate_tolerance = o.plate_tolerance;
+        const slim::OverhangReport pose = slim::analyse_overhang(orientation.inside_out ? slim::flipped(mesh) : mesh, ao);
+        slim::vcgx::save_surface(oriented_out, mesh, {pose.quality, pose.risky});
+      }
+    }
     if (!features_file.empty()) o.rigid_features = read_face_ids(features_file, mesh.F.rows());
     if (features_from_mesh) {
       if (extras.selected.empty()) die(in + " carries no face selection to use as rigid features");
@@ -149,11 +189,35 @@ int main(int argc, char** argv) {
 
     const slim::IterationStats& last = r.history.back();
     std::printf("support-slim: %s -> %s\n", in.c_str(), out.c_str());
+    if (orient) {
+      const slim::OrientationCandidate& best = orientation.best;
+      const double turn = std::acos(std::clamp(best.direction.z(), -1.0, 1.0)) * 180.0 / M_PI;
+      std::printf("  orientation     print direction (%.4f, %.4f, %.4f) of the input, turned %.1f deg; %d directions in %.2f s\n",
+                  best.direction.x(), best.direction.y(), best.direction.z(), turn, orientation.candidates,
+                  orientation.seconds);
+      std::printf("  support proxy   %.6g (as given) -> %.6g (oriented) -> %.6g (slimmed) mm^3\n",
+                  orientation.as_given.shadow_volume, r.before.shadow_volume, r.after.shadow_volume);
+      std::printf("  risky area      %.6g (as given) -> %.6g (oriented) mm^2\n", orientation.as_given.risky_area,
+                  r.before.risky_area);
+      std::printf("  best poses      score = support proxy - %.3g mm x plate contact (mm^3; lower is better)\n",
+                  orientation.contact_bonus_height);
+      for (size_t k = 0; k < orientation.top.size() && k < 5; ++k) {
+        const slim::OrientationCandidate& c = orientation.top[k];
+        std::printf("    %zu. score %-11.6g proxy %-11.6g risky %-10.6g contact %-10.6g dir (%.4f, %.4f, %.4f) %s\n", k + 1,
+                    c.score, c.shadow_volume, c.risky_area, c.contact_area, c.direction.x(), c.direction.y(),
+                    c.direction.z(), c.origin.c_str());
+      }
+      std::printf("    as given: score %.6g\n", orientation.as_given.score);
+    } else {
+      std::printf("  support proxy   %.6g -> %.6g mm^3 (risky faces' footprint x height above the plate)\n",
+                  r.before.shadow_volume, r.after.shadow_volume);
+    }
     std::printf("  risky area      %.6g -> %.6g mm^2  (%.2f%% -> %.2f%% of the surface, %.1f%% less)\n",
                 r.before.risky_area, r.after.risky_area, 100 * r.before.risky_share(), 100 * r.after.risky_share(),
                 r.before.risky_area > 0 ? 100 * (1 - r.after.risky_area / r.before.risky_area) : 0.0);
     std::printf("  iterations      %d in %.2f s (%s)\n", r.iterations, r.seconds, r.stop_reason.c_str());
-    std::printf("  displacement    max %.4g mm, mean %.4g mm\n", last.max_displacement, last.mean_displacement);
+    std::printf("  displacement    max %.4g mm, mean %.4g mm%s\n", last.max_displacement, last.mean_displacement,
+                orient ? " (the deformation alone, in the print pose)" : "");
     std::printf("  volume          %.6g -> %.6g mm^3 (%+.2f%%)\n", r.volume_before, r.volume_after,
                 r.volume_before != 0 ? 100 * (r.volume_after / r.volume_before - 1) : 0.0);
     std::printf("  AE              %.2f%%   inverted tets %d\n", 100 * last.approximation_error, last.inverted_tets);

@@ -1,10 +1,12 @@
 #include "filters.h"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 
 #include <vcg/complex/append.h>
 
+#include "core/orientation.h"
 #include "core/overhang.h"
 #include "core/slimming.h"
 #include "vcg_adapters/surface_adapter.h"
@@ -120,6 +122,119 @@ void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, Fil
   run.outputs["total_area"] = report.total_area;
 }
 
+// ---- orientation, shared by Print Orientation and Support Slimming's "optimize the orientation first"
+
+const char* const kSearchEffortHelp =
+    "How many print directions the search tries: Fast (1000 directions over the sphere, 4 refined), Normal "
+    "(4000, 8) or Thorough (16000, 16), besides the poses that rest a large flat face or a convex-hull facet "
+    "on the plate.";
+
+slim::OrientationOptions orientation_options(float alpha_max_deg, int effort) {
+  const slim::OrientationEffort level = effort == 0   ? slim::OrientationEffort::Fast
+                                        : effort == 2 ? slim::OrientationEffort::Thorough
+                                                      : slim::OrientationEffort::Normal;
+  slim::OrientationOptions o = slim::with_effort(level);
+  o.alpha_max_deg = alpha_max_deg;
+  return o;
+}
+
+// The search's findings for the log: the chosen pose, the proxy and risky area before and after,
+// and the five best poses.
+void log_orientation(const FilterRun& run, const QString& filter, const slim::OrientationResult& r, bool note_inside_out) {
+  const slim::OrientationCandidate &best = r.best, &given = r.as_given;
+  const double turn = std::acos(std::clamp(best.direction.z(), -1.0, 1.0)) * 180.0 / M_PI;
+  run.info(filter + QString::asprintf(
+                        ": print direction (%.4f, %.4f, %.4f) of the input, turned %.1f deg onto +Z; %d directions "
+                        "searched in %.2f s",
+                        best.direction.x(), best.direction.y(), best.direction.z(), turn, r.candidates, r.seconds));
+  run.info(filter + QString::asprintf(
+                        ": support proxy (shadow volume: risky faces' footprint x height above the plate) %.6g -> "
+                        "%.6g mm^3; risky area %.6g -> %.6g mm^2; plate contact %.6g -> %.6g mm^2",
+                        given.shadow_volume, best.shadow_volume, given.risky_area, best.risky_area,
+                        given.contact_area, best.contact_area));
+  run.info(filter + QString::asprintf(": best poses (score = proxy - %.3g mm x plate contact; lower is better):",
+                                      r.contact_bonus_height));
+  for (size_t k = 0; k < r.top.size() && k < 5; ++k) {
+    const slim::OrientationCandidate& c = r.top[k];
+    run.info(filter + QString::asprintf(
+                          ":   %zu. score %.6g, proxy %.6g mm^3, risky area %.6g mm^2, contact %.6g mm^2, "
+                          "direction (%.4f, %.4f, %.4f) [%s]",
+                          k + 1, c.score, c.shadow_volume, c.risky_area, c.contact_area, c.direction.x(),
+                          c.direction.y(), c.direction.z(), c.origin.c_str()));
+  }
+  run.info(filter + QString::asprintf(":   as given: score %.6g", given.score));
+  if (r.inside_out && note_inside_out) run.warning(filter + ": " + kInsideOutNotice);
+}
+
+// ---- Print Orientation -----------------------------------------------------------------------
+
+const char* const kPrintOrientationInfo =
+    "Finds the print direction that needs the least support material, and turns the mesh into that pose: "
+    "+Z up, resting on z = 0, as a <b>new layer</b> (the input layer is not changed).<br>"
+    "Each direction is scored by a support estimate, the <b>shadow volume</b>: for every risky face "
+    "(<i>n&middot;d + sin(&alpha;<sub>max</sub>) &lt; 0</i>, not resting on the plate), its area times "
+    "<i>-n&middot;d</i> (its footprint) times the height of its centre above the plate, that is the volume "
+    "of the support column under it. A small bonus for the area lying flat on the plate decides between "
+    "poses that need no support. The search tries directions spread over the whole sphere, the poses that "
+    "rest a large flat face or a convex-hull facet on the plate, and refines the best ones.<br>"
+    "On the result, face quality and colour show the risky faces of the new pose, which are selected. "
+    "The log lists the five best poses, and the risky area and the estimate before and after. Turning "
+    "changes no shape; <i>Support Slimming</i> can then deform the part in its new pose.";
+
+void add_print_orientation_parameters(const MeshModel&, RichParameterList& par) {
+  par.addParam(RichFloat("alphaMax", 45.0f, "Self-supporting angle (deg)",
+                         "The largest overhang, measured from the vertical, that prints without support. "
+                         "Faces that lean out further are risky. Must be in [0, 90)."));
+  par.addParam(RichEnum("searchEffort", 1, QStringList() << "Fast" << "Normal" << "Thorough", "Search effort",
+                        kSearchEffortHelp));
+  par.addParam(RichBool("applyResult", true, "Apply the result",
+                        "Put the mesh in its best pose as a new layer '<name> oriented'. Off: only report the "
+                        "best poses in the log."));
+}
+
+// A copy of `input` as a new layer with the given positions and the overhang results of its pose;
+// removed again if anything fails, so the document is never left half changed.
+MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& suffix, const slim::Points& V,
+                            const Eigen::VectorXd& face_quality, const std::vector<bool>& risky,
+                            const Eigen::VectorXd* vertex_quality) {
+  MeshModel* output = md.addNewMesh(QString(), input.label() + " " + suffix, true);
+  try {
+    output->updateDataMask(&input);
+    vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(output->cm, input.cm);
+    output->cm.Tr = input.cm.Tr;
+    output->updateDataMask(MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR |
+                           (vertex_quality ? int(MeshModel::MM_VERTQUALITY) : 0));
+    slim::vcgx::write_positions(output->cm, V);
+    slim::vcgx::write_face_results(output->cm, face_quality, true, &risky);
+    if (vertex_quality) slim::vcgx::write_vertex_quality(output->cm, *vertex_quality);
+  } catch (...) {
+    meshlab_api::delete_layer(md, output);
+    md.setCurrentMesh(input.id());
+    throw;
+  }
+  return output;
+}
+
+void apply_print_orientation(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
+  MeshModel& input = current_triangle_mesh(md);
+  const slim::Surface surface = slim::vcgx::to_surface(input.cm);
+  const slim::OrientationResult r =
+      slim::optimize_orientation(surface, orientation_options(par.getFloat("alphaMax"), par.getEnum("searchEffort")));
+  if (par.getBool("applyResult")) {
+    const slim::Surface posed = slim::apply_orientation(surface, r.rotation);
+    slim::OverhangOptions pose;
+    pose.alpha_max_deg = par.getFloat("alphaMax");
+    pose.plate_tolerance = r.plate_tolerance;
+    const slim::OverhangReport report = slim::analyse_overhang(r.inside_out ? slim::flipped(posed) : posed, pose);
+    add_result_layer(md, input, "oriented", posed.V, report.quality, report.risky, nullptr);
+  }
+  log_orientation(run, "Print Orientation", r, true);
+  run.outputs["shadow_volume_before"] = r.as_given.shadow_volume;
+  run.outputs["shadow_volume_after"] = r.best.shadow_volume;
+  run.outputs["risky_area_before"] = r.as_given.risky_area;
+  run.outputs["risky_area_after"] = r.best.risky_area;
+}
+
 // ---- Support Slimming ------------------------------------------------------------------------
 
 const char* const kSupportSlimmingInfo =
@@ -160,6 +275,11 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
   par.addParam(RichBool("preserveSelection", false, "Preserve selection as rigid features",
                         "Each connected piece of the current face selection moves as one rigid body, so a "
                         "feature you care about keeps its shape."));
+  par.addParam(RichBool("optimizeOrientation", false, "Optimize the orientation first",
+                        "First turn the part into the pose that needs the least support (as Print Orientation "
+                        "does, Normal effort), then slim it there. The print direction above is then ignored: "
+                        "the result is in the new pose, +Z up, resting on z = 0, and the displacement counts "
+                        "only the deformation."));
 }
 
 void apply_support_slimming(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
@@ -179,22 +299,21 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   }
 
   // Everything is computed before the document is touched: a failure or a cancel leaves no layer.
-  const slim::SlimmingResult r = slim::slim_supports(slim::vcgx::to_surface(input.cm), options);
-
-  MeshModel* output = md.addNewMesh(QString(), input.label() + " slimmed", true);
-  try {
-    output->updateDataMask(&input);
-    vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(output->cm, input.cm);
-    output->cm.Tr = input.cm.Tr;
-    output->updateDataMask(MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_VERTQUALITY);
-    slim::vcgx::write_positions(output->cm, r.surface.V);
-    slim::vcgx::write_face_results(output->cm, r.after.quality, true, &r.after.risky);
-    slim::vcgx::write_vertex_quality(output->cm, r.displacement);
-  } catch (...) {
-    meshlab_api::delete_layer(md, output);  // never leave a half-built layer behind
-    md.setCurrentMesh(input.id());
-    throw;
+  // With the orientation first, the part turns rigidly into its print pose and is slimmed there,
+  // so the displacement and the volume change are the deformation's alone.
+  slim::Surface surface = slim::vcgx::to_surface(input.cm);
+  const bool orient = par.getBool("optimizeOrientation");
+  slim::OrientationResult orientation;
+  if (orient) {
+    slim::OrientationOptions oo = orientation_options(par.getFloat("alphaMax"), 1);
+    oo.plate_tolerance = options.plate_tolerance;
+    orientation = slim::optimize_orientation(surface, oo);
+    surface = slim::apply_orientation(surface, orientation.rotation);
+    options.print_direction = Eigen::Vector3d::UnitZ();
   }
+  const slim::SlimmingResult r = slim::slim_supports(surface, options);
+  add_result_layer(md, input, "slimmed", r.surface.V, r.after.quality, r.after.risky, &r.displacement);
+  if (orient) log_orientation(run, "Support Slimming", orientation, false);  // slimming notes it below
 
   const slim::IterationStats& last = r.history.back();
   run.info(QString::asprintf(
@@ -205,9 +324,10 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
                              r.iterations, r.seconds, r.stop_reason.c_str(), r.domain_vertices, r.domain_tets,
                              r.solver_backend.c_str()));
   run.info(QString::asprintf(
-      "Support Slimming: displacement max %.4g, mean %.4g mm; volume %.6g -> %.6g mm^3 (%+.2f%%); "
+      "Support Slimming: displacement max %.4g, mean %.4g mm%s; volume %.6g -> %.6g mm^3 (%+.2f%%); "
       "AE %.2f%%; inverted tets %d",
-      last.max_displacement, last.mean_displacement, r.volume_before, r.volume_after,
+      last.max_displacement, last.mean_displacement, orient ? " (the deformation alone, in the print pose)" : "",
+      r.volume_before, r.volume_after,
       r.volume_before != 0 ? 100.0 * (r.volume_after / r.volume_before - 1.0) : 0.0,
       100.0 * last.approximation_error, last.inverted_tets));
   if (r.inside_out) run.warning(QString("Support Slimming: ") + kInsideOutNotice);
@@ -229,6 +349,9 @@ const std::vector<FilterDefinition>& filter_definitions() {
       {"Support Slimming", kSupportSlimmingInfo, MenuCategory::Smoothing,
        MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
        add_support_slimming_parameters, apply_support_slimming},
+      {"Print Orientation", kPrintOrientationInfo, MenuCategory::Normal,
+       MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
+       add_print_orientation_parameters, apply_print_orientation},
   };
   return filters;
 }

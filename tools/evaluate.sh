@@ -15,6 +15,11 @@
 #  6. Pictures: input and result, risky faces red, same cameras (f3d under Xvfb, ImageMagick).
 #  7. OUT/report.md (the table, the picture, the settings) and OUT/metrics.txt (key=value).
 #
+# With --orient the CLI first turns the part into the print pose its orientation search chooses
+# and slims it there; the report then has three columns: input (as given), oriented, and oriented
+# + slimmed, and the shape change (Hausdorff, displacement, volume) is that of the slimming alone,
+# oriented -> slimmed, in the oriented frame.
+#
 # Needs: a build with support-slim, slim-eval and the private MeshLab prefix (--build, default
 # build/), and prusa-slicer, xvfb-run, f3d, ImageMagick (scripts/setup.sh installs them).
 # Exits non-zero with a one-line reason on bad input or when a step fails.
@@ -32,6 +37,9 @@ usage: tools/evaluate.sh MESH [options]
   --resolution N, --domain voxel|tetgen, --method coherent|paper, --iterations N,
   --max-deviation PCT, --max-k K
                           passed to support-slim (its defaults otherwise)
+  --orient                orient first (support-slim --orient): three columns, input,
+                          oriented, oriented + slimmed
+  --orient-effort E       fast, normal or thorough (with --orient)                   [normal]
   --build DIR             build tree holding cli/support-slim, tools/slim-eval, prefix/ [build]
   --name TEXT             the part's name in the report                  [the mesh file name]
   --quiet                 print only the table at the end
@@ -52,12 +60,12 @@ fmt() { awk -v d="$1" -v v="$2" 'BEGIN { printf "%." d "f", v }'; }
 xrun() { xvfb-run -a -n $((100 + RANDOM % 800)) "$@"; }
 is_number() { [[ "$1" =~ ^[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)$ ]]; }
 
-mesh="" out="" size=60 angle=45 dir="0,0,1" build="$repo/build" name="" quiet=""
-slim_args=()
+mesh="" out="" size=60 angle=45 dir="0,0,1" build="$repo/build" name="" quiet="" orient=""
+slim_args=() orient_args=()
 while [ $# -gt 0 ]; do
   case "$1" in
     -h|--help) usage; exit 0 ;;
-    --out|--size|--angle|--dir|--build|--name|--resolution|--domain|--method|--iterations|--max-deviation|--max-k)
+    --out|--size|--angle|--dir|--build|--name|--resolution|--domain|--method|--iterations|--max-deviation|--max-k|--orient-effort)
       [ $# -ge 2 ] || die "$1 needs a value"
       case "$1" in
         --out) out="$2" ;;
@@ -66,10 +74,12 @@ while [ $# -gt 0 ]; do
         --dir) dir="$2" ;;
         --build) build="$2" ;;
         --name) name="$2" ;;
+        --orient-effort) orient_args+=("$1" "$2") ;;
         *) slim_args+=("$1" "$2") ;;
       esac
       shift 2 ;;
     --quiet) quiet=1; shift ;;
+    --orient) orient=1; shift ;;
     -*) die "unknown option $1 (see --help)" ;;
     *) [ -z "$mesh" ] || die "more than one mesh given: $mesh and $1"; mesh="$1"; shift ;;
   esac
@@ -77,6 +87,7 @@ done
 
 # ---- checks: one line and a non-zero exit for anything missing or malformed ----------------------
 [ -n "$mesh" ] || die "no mesh given (see --help)"
+[ -n "$orient" ] || [ ${#orient_args[@]} -eq 0 ] || die "--orient-effort needs --orient"
 [ -f "$mesh" ] && [ -r "$mesh" ] || die "cannot read $mesh"
 is_number "$size" || die "--size expects a number of mm, got '$size'"
 is_number "$angle" || die "--angle expects degrees, got '$angle'"
@@ -108,18 +119,34 @@ say "preparing $mesh (longest side $size mm, print direction $dir)"
 diag="$(kv "$out/prepare.txt" diag)"
 plate_tol="$(calc "1e-3 * $diag")"  # the CLI's default, fixed here so every step uses the same
 
-# ---- 2. Support Slimming ---------------------------------------------------------------------------
-say "support-slim ${slim_args[*]:-(defaults)} --angle $angle"
-"$slim" "$out/input.ply" -o "$out/slimmed.ply" --dir 0,0,1 --angle "$angle" --plate-tolerance "$plate_tol" \
+# ---- 2. Support Slimming (after orientation with --orient) ----------------------------------------
+# parts: what is measured and sliced; base: what the slimming started from (the shape change is
+# measured from it: with --orient the oriented part, so the turn does not count).
+if [ -n "$orient" ]; then
+  parts=(input oriented slimmed) base=oriented
+  pose_args=(--orient --oriented-output "$out/oriented.ply" "${orient_args[@]}")
+else
+  parts=(input slimmed) base=input
+  pose_args=(--dir 0,0,1)
+fi
+say "support-slim ${pose_args[*]} ${slim_args[*]:-(defaults)} --angle $angle"
+"$slim" "$out/input.ply" -o "$out/slimmed.ply" "${pose_args[@]}" --angle "$angle" --plate-tolerance "$plate_tol" \
   "${slim_args[@]}" --quiet >"$out/slim.log" 2>&1 || die "support-slim failed: $(tail -1 "$out/slim.log")"
+orient_direction="" orient_turn=""
+if [ -n "$orient" ]; then
+  orient_line="$(grep -E '^ +orientation +print direction' "$out/slim.log" || true)"
+  [ -n "$orient_line" ] || die "support-slim printed no 'orientation' line (see $out/slim.log)"
+  orient_direction="$(sed -E 's/.*direction \(([^)]*)\).*/\1/; s/ //g' <<<"$orient_line")"
+  orient_turn="$(sed -E 's/.*turned ([0-9.]+) deg.*/\1/' <<<"$orient_line")"
+fi
 iter_line="$(grep -E '^ +iterations ' "$out/slim.log" || true)"
 [ -n "$iter_line" ] || die "support-slim printed no 'iterations' line (see $out/slim.log)"
 iterations="$(awk '{ print $2 }' <<<"$iter_line")"
 slim_seconds="$(awk '{ print $4 }' <<<"$iter_line")"
 stop_reason="$(sed -E 's/^[^(]*\((.*)\)$/\1/' <<<"$iter_line")"  # the outer parentheses
 
-for part in input slimmed; do
-  ref=(); [ "$part" = slimmed ] && ref=(--reference "$out/input.ply")
+for part in "${parts[@]}"; do
+  ref=(); [ "$part" = slimmed ] && ref=(--reference "$out/$base.ply")
   "$eval_tool" measure "$out/$part.ply" --angle "$angle" --plate-tolerance "$plate_tol" "${ref[@]}" \
     --stl "$out/$part.stl" --overhang-ply "$out/${part}_overhang.ply" >"$out/$part.txt" 2>"$out/$part.err" ||
     die "$(tail -1 "$out/$part.err" | sed 's/^slim-eval: //')"
@@ -139,7 +166,7 @@ slicer_settings=(
   --bed-shape "0x0,${bed}x0,${bed}x${bed},0x${bed}" --center "$center,$center"
   --gcode-comments
 )
-for part in input slimmed; do
+for part in "${parts[@]}"; do
   say "slicing $part.stl (PrusaSlicer, support threshold $threshold deg from the horizontal)"
   prusa-slicer --export-gcode "${slicer_settings[@]}" --output "$out/$part.gcode" "$out/$part.stl" \
     >"$out/slice_$part.log" 2>&1 || die "prusa-slicer failed on $part.stl: $(grep -iE 'error|exception' "$out/slice_$part.log" | tail -1)"
@@ -168,7 +195,7 @@ EOF
 }
 { echo '<!DOCTYPE FilterScript>'; echo '<FilterScript>'; hausdorff_filter 0 1; hausdorff_filter 1 0; echo '</FilterScript>'; } \
   >"$out/hausdorff.mlx"
-xrun "$server" -i "$out/input.ply" -i "$out/slimmed.ply" -s "$out/hausdorff.mlx" >"$out/hausdorff.log" 2>&1 ||
+xrun "$server" -i "$out/$base.ply" -i "$out/slimmed.ply" -s "$out/hausdorff.mlx" >"$out/hausdorff.log" 2>&1 ||
   die "meshlabserver failed on the Hausdorff Distance script (see $out/hausdorff.log)"
 # Each run logs "LOG: 2 Sampled N pts ..." then "LOG: 2 min : a   max b   mean : c   RMS : d" in mm
 # (meshlabserver then echoes the whole log again without the "LOG:" prefix).
@@ -192,7 +219,7 @@ camera() {  # ELEVATION_Z: the camera direction is (0.55, -0.8, ELEVATION_Z), no
     printf "--camera-position=%g,%g,%g --camera-focal-point=%g,%g,%g --camera-view-up=0,0,1",
       cx + r * 0.55 / n, cy - r * 0.8 / n, cz + r * ez / n, cx, cy, cz }'
 }
-for part in input slimmed; do
+for part in "${parts[@]}"; do
   views=()
   for view in above:0.35 below:-0.6; do
     png="$out/${part}_${view%%:*}.png"
@@ -207,7 +234,8 @@ for part in input slimmed; do
   convert "${views[@]}" -append "$out/$part.png" || die "ImageMagick could not stack the views of $part"
 done
 picture="$out/before_after.png"
-convert "$out/input.png" "$out/slimmed.png" +append "$picture" || die "ImageMagick could not join the pictures"
+pictures=(); for part in "${parts[@]}"; do pictures+=("$out/$part.png"); done
+convert "${pictures[@]}" +append "$picture" || die "ImageMagick could not join the pictures"
 
 # ---- 7. report ----------------------------------------------------------------------------------
 support_before="$(calc "$(kv "$out/input_gcode.txt" support_mm3)")"
@@ -220,6 +248,14 @@ risky_before="$(kv "$out/input.txt" risky_area)"; risky_after="$(kv "$out/slimme
 area_before="$(kv "$out/input.txt" area)"; area_after="$(kv "$out/slimmed.txt" area)"
 volume_before="$(kv "$out/input.txt" volume)"; volume_after="$(kv "$out/slimmed.txt" volume)"
 max_disp="$(kv "$out/slimmed.txt" max_displacement)"
+proxy_before="$(kv "$out/input.txt" shadow_volume)"; proxy_after="$(kv "$out/slimmed.txt" shadow_volume)"
+if [ -n "$orient" ]; then
+  support_oriented="$(calc "$(kv "$out/oriented_gcode.txt" support_mm3)")"
+  total_oriented="$(kv "$out/oriented_gcode.txt" total_mm3)"
+  check_oriented="$(kv "$out/oriented_gcode.txt" total_vs_slicer_pct)"
+  risky_oriented="$(kv "$out/oriented.txt" risky_area)"; area_oriented="$(kv "$out/oriented.txt" area)"
+  proxy_oriented="$(kv "$out/oriented.txt" shadow_volume)"
+fi
 total_before="$(kv "$out/input_gcode.txt" total_mm3)"; total_after="$(kv "$out/slimmed_gcode.txt" total_mm3)"
 check_before="$(kv "$out/input_gcode.txt" total_vs_slicer_pct)"; check_after="$(kv "$out/slimmed_gcode.txt" total_vs_slicer_pct)"
 share() { awk -v v="$1" -v t="$2" 'BEGIN { printf "%.1f%%", 100 * v / t }'; }
@@ -236,6 +272,16 @@ elapsed=$((SECONDS - started))
   echo "filament_mm3_after=$total_after"
   echo "total_vs_slicer_pct_before=$check_before"
   echo "total_vs_slicer_pct_after=$check_after"
+  echo "shadow_volume_before=$proxy_before"
+  echo "shadow_volume_after=$proxy_after"
+  if [ -n "$orient" ]; then
+    echo "support_mm3_oriented=$support_oriented"
+    echo "filament_mm3_oriented=$total_oriented"
+    echo "risky_area_oriented=$risky_oriented"
+    echo "shadow_volume_oriented=$proxy_oriented"
+    echo "orient_direction=$orient_direction"
+    echo "orient_turn_deg=$orient_turn"
+  fi
   echo "risky_area_before=$risky_before"
   echo "risky_area_after=$risky_after"
   echo "volume_before=$volume_before"
@@ -256,7 +302,23 @@ elapsed=$((SECONDS - started))
   echo "evaluation_seconds=$elapsed"
 } >"$out/metrics.txt"
 
+table_oriented() {
+  echo "| | input (as given) | oriented | oriented + slimmed |"
+  echo "| --- | ---: | ---: | ---: |"
+  echo "| support material (PrusaSlicer) | $(fmt 0 "$support_before") mm³ | $(fmt 0 "$support_oriented") mm³ ($(change "$support_before" "$support_oriented")) | **$(fmt 0 "$support_after") mm³ ($support_change)** |"
+  echo "| support proxy (shadow volume) | $(fmt 0 "$proxy_before") mm³ | $(fmt 0 "$proxy_oriented") mm³ ($(change "$proxy_before" "$proxy_oriented")) | $(fmt 0 "$proxy_after") mm³ ($(change "$proxy_before" "$proxy_after")) |"
+  echo "| risky area (alpha_max $angle°) | $(fmt 1 "$risky_before") mm² ($(share "$risky_before" "$area_before")) | $(fmt 1 "$risky_oriented") mm² ($(share "$risky_oriented" "$area_oriented")) | $(fmt 1 "$risky_after") mm² ($(share "$risky_after" "$area_after")) |"
+  echo "| all filament | $(fmt 0 "$total_before") mm³ | $(fmt 0 "$total_oriented") mm³ | $(fmt 0 "$total_after") mm³ |"
+  echo "| print direction (input frame) | 0,0,1 | $orient_direction (turned $orient_turn°) | same |"
+  echo "| Hausdorff distance, slimming only (oriented → slimmed) | | | $(fmt 3 "$hausdorff") mm ($(pct_of_diag "$hausdorff")% of diag) |"
+  echo "| mean distance, slimming only | | | $(fmt 3 "$mean_dist") mm ($(pct_of_diag "$mean_dist")% of diag) |"
+  echo "| largest vertex displacement, slimming only | | | $(fmt 3 "$max_disp") mm ($(pct_of_diag "$max_disp")% of diag) |"
+  echo "| volume | $(fmt 0 "$volume_before") mm³ | | $(fmt 0 "$volume_after") mm³ ($(change "$volume_before" "$volume_after")) |"
+  echo "| iterations, optimizer time | | | $iterations, $slim_seconds s ($stop_reason) |"
+}
+
 table() {
+  if [ -n "$orient" ]; then table_oriented; return; fi
   echo "| | input | slimmed | change |"
   echo "| --- | ---: | ---: | ---: |"
   echo "| support material (PrusaSlicer) | $(fmt 0 "$support_before") mm³ | $(fmt 0 "$support_after") mm³ | **$support_change** |"
@@ -272,7 +334,13 @@ table() {
 {
   echo "# Support Slimming, judged by PrusaSlicer: $name"
   echo
-  echo "Input \`$mesh\`, printed along $dir, scaled to a longest side of $size mm (×$(kv "$out/prepare.txt" scale)),"
+  if [ -n "$orient" ]; then
+    echo "Input \`$mesh\` as given along $dir, then turned by the orientation search (print direction"
+    echo "$orient_direction of the input, $orient_turn° from it) and slimmed in that pose; scaled"
+  else
+    echo "Input \`$mesh\`, printed along $dir, scaled"
+  fi
+  echo " to a longest side of $size mm (×$(kv "$out/prepare.txt" scale)),"
   echo "bounding-box diagonal $(fmt 2 "$diag") mm. Self-supporting angle $angle° from the vertical, so"
   echo "PrusaSlicer's support threshold is $threshold° (it measures from the horizontal)."
   echo
@@ -282,14 +350,14 @@ table() {
   echo "the support by about 1.2%, a 1° turn about Z by about 0.75%. Both parts are sliced at one fixed"
   echo "scale, in the same place, with the same settings."
   echo
-  echo "![input (left) and slimmed (right)](before_after.png)"
+  echo "![${parts[*]}, left to right](before_after.png)"
   echo
-  echo "Left the input, right the slimmed part; top seen from above, bottom from below, same cameras."
+  echo "Left to right: ${parts[*]}; top seen from above, bottom from below, same cameras."
   echo "Red faces need support by our rule (n·d + sin(alpha_max) < 0), blue ones do not."
   echo
   echo "## How it was measured"
   echo
-  echo "- Support Slimming: \`support-slim --dir 0,0,1 --angle $angle --plate-tolerance $plate_tol${slim_args[*]:+ ${slim_args[*]}}\`"
+  echo "- Support Slimming: \`support-slim ${pose_args[*]/#$out\//} --angle $angle --plate-tolerance $plate_tol${slim_args[*]:+ ${slim_args[*]}}\`"
   echo "  on the part in the print frame; it stopped after $iterations iterations ($stop_reason)."
   echo "- Slicer: $(prusa-slicer --help 2>/dev/null | grep -m1 -o 'PrusaSlicer-[^ ]*'), \`${slicer_settings[*]}\`."
   echo "- Support: the filament extruded (E rising while X/Y move, wipes and retractions left out) in the"

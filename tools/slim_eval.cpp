@@ -22,8 +22,8 @@ const char* kUsage = R"(usage:
       OUT_BASE.ply. Prints scale, size, diag, vertices, faces.
   slim-eval measure MESH [--angle DEG] [--plate-tolerance MM] [--reference REF] [--stl OUT.stl]
                          [--overhang-ply OUT.ply]
-      Risky area (+Z up), area, volume, bbox; with REF (same vertices, e.g. the input of a
-      slimming run) the largest and mean vertex displacement. Writes the mesh as STL, and as a PLY
+      Risky area and the support proxy (shadow volume, overhang.h) with +Z up, area, volume, bbox;
+      with REF (same vertices, e.g. the input of a slimming run) the largest and mean vertex displacement. Writes the mesh as STL, and as a PLY
       whose risky faces are red and the others blue (for pictures).
   slim-eval gcode FILE.gcode
       Filament extruded per feature type; support (incl. interface) in mm and mm^3; the total
@@ -118,7 +118,8 @@ int measure(const Args& a) {
   o.plate_tolerance = a.get("--plate-tolerance") ? number("--plate-tolerance", *a.get("--plate-tolerance"))
                                                  : 1e-3 * diagonal(s);
   const slim::OverhangReport r = slim::analyse_overhang(s, o);
-  std::cout << "risky_area=" << r.risky_area << "\nrisky_faces=" << r.risky_count << "\narea=" << r.total_area
+  std::cout << "risky_area=" << r.risky_area << "\nrisky_faces=" << r.risky_count << "\nshadow_volume=" << r.shadow_volume
+            << "\narea=" << r.total_area
             << "\nvolume=" << slim::signed_volume(s) << "\ndiag=" << diagonal(s)
             << "\nbbox_min=" << triple(s.V.colwise().minCoeff().transpose())
             << "\nbbox_max=" << triple(s.V.colwise().maxCoeff().transpose()) << "\n";

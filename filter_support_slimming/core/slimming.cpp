@@ -624,12 +624,7 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
   // the part to fix overhangs that are not there. A closed mesh that is inside out is unambiguous:
   // work on it turned over, and say so in the result.
   const EdgeTopology edges = edge_topology(input);
-  if (edges.flipped_edges > 0)
-    throw std::invalid_argument("the faces are not consistently oriented (" + edges.first_flipped + "; " +
-                                std::to_string(edges.flipped_edges) +
-                                " such edge(s)), so their normals do not tell the outside of the part; re-orient "
-                                "the faces coherently (MeshLab: Filters > Normals, Curvatures and Orientation > "
-                                "Re-Orient all faces coherently)");
+  require_consistent_orientation(edges);
   if (!inside_out(input, edges)) return slim_oriented(input, o);
   SlimmingResult r = slim_oriented(flipped(input), o);
   r.surface.F = input.F;  // the topology never changes, orientation included

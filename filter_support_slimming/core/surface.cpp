@@ -105,6 +105,15 @@ EdgeTopology edge_topology(const Surface& s) {
   return t;
 }
 
+void require_consistent_orientation(const EdgeTopology& edges) {
+  if (edges.flipped_edges > 0)
+    throw std::invalid_argument("the faces are not consistently oriented (" + edges.first_flipped + "; " +
+                                std::to_string(edges.flipped_edges) +
+                                " such edge(s)), so their normals do not tell the outside of the part; re-orient "
+                                "the faces coherently (MeshLab: Filters > Normals, Curvatures and Orientation > "
+                                "Re-Orient all faces coherently)");
+}
+
 bool inside_out(const Surface& s, const EdgeTopology& edges) {
   return edges.open_edges == 0 && edges.flipped_edges == 0 && s.F.rows() > 0 && signed_volume(s) < 0.0;
 }

@@ -50,6 +50,11 @@ struct EdgeTopology {
 };
 EdgeTopology edge_topology(const Surface& s);
 
+// Throws std::invalid_argument when faces disagree along shared edges (edges.flipped_edges > 0):
+// their normals then do not tell the outside of the part, which every overhang rule reads from
+// them. The message names the first such edge and how to fix the mesh in MeshLab.
+void require_consistent_orientation(const EdgeTopology& edges);
+
 // Inside out: no open edge, no flipped edge, and a negative enclosed volume, so every normal
 // points into the part. (Non-manifold edges are allowed: duplicated faces or solids sharing an
 // edge still enclose a volume with the right sign.) The overhang rule reads the outside from the

@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "core/orientation.h"
 #include "core/overhang.h"
 #include "core/slimming.h"
 #include "support/bad_inputs.h"
@@ -94,6 +95,64 @@ TEST(Cli, FeaturesFileIsRead) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("face 99999999"), std::string::npos) << r.err;
   fs::remove_all(dir);
+}
+
+TEST(Cli, OrientTurnsThePartFirstAndSlimsItInItsPrintPose) {
+  // The printable mushroom upside down and off the origin: --orient turns it cap up (onto its
+  // stem's foot), --oriented-output holds that pose, and the slimmed OUT is in the same pose,
+  // its displacement measured from the oriented part (the deformation, not the turn).
+  const fs::path dir = scratch();
+  const Surface upside_down =
+      test::transformed(test::refined(test::printable_mushroom(), 1), test::axis_angle({1, 0, 0}, M_PI), {40, 5, 20});
+  const fs::path in = dir / "mushroom.ply", out = dir / "slimmed.ply", posed = dir / "oriented.ply";
+  vcgx::save_surface(in.string(), upside_down);
+  const CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "' --orient --oriented-output '" +
+                           posed.string() + "' --iterations 3 --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* line : {"orientation     print direction (", "turned 180.0 deg", "support proxy", "(as given) ->",
+                           "(oriented) ->", "(slimmed)", "1. score", "as given: score"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing from\n" << r.out;
+
+  const Surface read_in = vcgx::load_surface(in.string());
+  const Surface expected = apply_orientation(read_in, optimize_orientation(read_in).rotation);
+  const Surface oriented = vcgx::load_surface(posed.string()), slimmed = vcgx::load_surface(out.string());
+  ASSERT_EQ(oriented.F, read_in.F);
+  EXPECT_LT((oriented.V - expected.V).cwiseAbs().maxCoeff(), 1e-4);
+  EXPECT_NEAR(oriented.V.col(2).minCoeff(), 0.0, 1e-5);
+  EXPECT_NEAR(oriented.V.col(2).maxCoeff(), 20.0, 1e-4);  // the dome's apex on top
+  EXPECT_EQ(analyse_overhang(oriented).risky_area, 0.0);  // cap up nothing overhangs
+  ASSERT_EQ(slimmed.V.rows(), oriented.V.rows());
+  EXPECT_EQ(slimmed.V, oriented.V);  // nothing left to slim
+
+  // The bunny still overhangs in its best pose, so slimming moves it; the reported displacement
+  // is the distance from the oriented part.
+  const fs::path bunny_out = dir / "bunny.ply", bunny_posed = dir / "bunny_oriented.ply";
+  const CliRun b = run_cli("'" + test::sample_bunny_path() + "' -o '" + bunny_out.string() +
+                           "' --orient --oriented-output '" + bunny_posed.string() + "' --iterations 3 --quiet");
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const Surface bunny_oriented = vcgx::load_surface(bunny_posed.string()), bunny_slimmed = vcgx::load_surface(bunny_out.string());
+  ASSERT_EQ(bunny_slimmed.V.rows(), bunny_oriented.V.rows());
+  const double moved = (bunny_slimmed.V - bunny_oriented.V).rowwise().norm().maxCoeff();
+  const size_t at = b.out.find("displacement    max ");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_GT(moved, 0.0);
+  EXPECT_NEAR(std::stod(b.out.substr(at + 20)), moved, 1e-4 + 1e-3 * moved) << b.out;
+  EXPECT_NE(b.out.find("(the deformation alone, in the print pose)"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(Cli, OrientOptionsAreChecked) {
+  const std::string bunny = "'" + test::sample_bunny_path() + "' -o /tmp/never-written.ply ";
+  for (const auto& [args, reason] : std::vector<std::pair<std::string, std::string>>{
+           {"--orient --dir 0,0,1", "leave out --dir"},
+           {"--oriented-output x.ply", "--oriented-output needs --orient"},
+           {"--orient --orient-effort huge", "--orient-effort expects fast, normal or thorough"},
+           {"--orient --angle 90", "self-supporting angle"}}) {
+    const CliRun r = run_cli(bunny + args + " --quiet");
+    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_NE(r.err.find(reason), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
 }
 
 TEST(Cli, BadInputExitsNonZeroWithOneLine) {

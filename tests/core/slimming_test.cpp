@@ -104,7 +104,9 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
         EXPECT_EQ(r.surface.V, c.mesh.V);  // the input itself, bit for bit
         EXPECT_EQ(r.displacement.maxCoeff(), 0.0);
       }
-      if (c.improves && method == SlimmingMethod::Coherent) EXPECT_LT(r.after.shadow_volume, 0.8 * r.before.shadow_volume);
+      if (c.improves && method == SlimmingMethod::Coherent) {
+        EXPECT_LT(r.after.shadow_volume, 0.8 * r.before.shadow_volume);
+      }
     }
 }
 

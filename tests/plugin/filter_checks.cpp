@@ -67,6 +67,39 @@ void expect_slimmed_layer(const MeshModel& input, const MeshModel& out, const st
   EXPECT_TRUE(text.contains("inverted tets 0")) << text.toStdString();
 }
 
+void expect_oriented_layer(const MeshModel& input, const MeshModel& out, const std::vector<vcg::Point3f>& original,
+                           const OrientationOptions& options, const QStringList& log) {
+  ASSERT_NE(&out, &input);
+  EXPECT_EQ(positions(input), original);  // the input layer is untouched
+  EXPECT_EQ(out.label(), input.label() + " oriented");
+  const Surface seen = vcgx::to_surface(input.cm);  // float positions, as the filter saw them
+  const Surface got = vcgx::to_surface(out.cm);
+  ASSERT_EQ(got.F, seen.F);  // orienting never adds, removes or reorders a face
+  const OrientationResult best = optimize_orientation(seen, options);
+  const Surface expected = apply_orientation(seen, best.rotation);
+  const double size = (seen.V.colwise().maxCoeff() - seen.V.colwise().minCoeff()).norm();
+  EXPECT_LT((got.V - expected.V).cwiseAbs().maxCoeff(), 1e-5 * size);
+  EXPECT_NEAR(got.V.col(2).minCoeff(), 0.0, 1e-6 * size);  // resting on the plate
+
+  // Face quality and selection describe the new pose.
+  ASSERT_TRUE(out.hasDataMask(MeshModel::MM_FACEQUALITY));
+  OverhangOptions o;
+  o.alpha_max_deg = options.alpha_max_deg;
+  o.plate_tolerance = best.plate_tolerance;
+  const OverhangReport now = analyse_overhang(got, o);
+  int selected = 0;
+  for (int f = 0; f < out.cm.fn; ++f) {
+    EXPECT_NEAR(out.cm.face[static_cast<size_t>(f)].cQ(), now.quality(f), 1e-4);
+    selected += out.cm.face[static_cast<size_t>(f)].IsS();
+  }
+  EXPECT_NEAR(selected, now.risky_count, 3);  // float rounding right at the threshold
+
+  const QString text = log.join("\n");
+  for (const char* part : {"print direction (", "support proxy", "risky area", "  1. score", "  5. score", "as given: score"})
+    EXPECT_TRUE(text.contains(part)) << part << " not in\n" << text.toStdString();
+  EXPECT_FALSE(text.contains("  6. score")) << text.toStdString();
+}
+
 RichParameterList example_script_params(const QString& file, const QString& filter) {
   FilterScript script;
   EXPECT_TRUE(script.open(QString(SLIM_SOURCE_DIR) + "/examples/" + file)) << file.toStdString();

@@ -8,6 +8,7 @@
 #include <QString>
 #include <QStringList>
 
+#include "core/orientation.h"
 #include "core/overhang.h"
 #include "meshlab_api.h"
 
@@ -26,6 +27,13 @@ void expect_overhang_written(const MeshModel& m, const OverhangReport& expected)
 // risky area and no inverted tetrahedron.
 void expect_slimmed_layer(const MeshModel& input, const MeshModel& out, const std::vector<vcg::Point3f>& original,
                           double plate_tolerance, const QStringList& log);
+
+// Print Orientation's result: `out` is a new layer "<input label> oriented" next to `input`, whose
+// positions are still `original`; `out` has the same faces and holds the input in the core's best
+// pose for `options` (+Z up, resting on z = 0); its face quality and selection describe that pose;
+// the filter's `log` lists the top five poses and the proxy and risky area before and after.
+void expect_oriented_layer(const MeshModel& input, const MeshModel& out, const std::vector<vcg::Point3f>& original,
+                           const OrientationOptions& options, const QStringList& log);
 
 // The parameters of `filter` in one of our examples/*.mlx, read by this MeshLab's script parser.
 RichParameterList example_script_params(const QString& file, const QString& filter);

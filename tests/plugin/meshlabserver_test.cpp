@@ -7,6 +7,7 @@
 #include <unistd.h>
 #include <regex>
 
+#include "core/orientation.h"
 #include "core/overhang.h"
 #include "harness.h"
 #include "support/shapes.h"
@@ -84,6 +85,38 @@ TEST(Meshlabserver, SupportSlimmingScriptOnTheBunny) {
   for (Eigen::Index f = 0; f < areas.size(); ++f)
     if (saved.quality(f) < 0) risky += areas(f);
   EXPECT_NEAR(risky, after, 0.02 * after);
+  fs::remove_all(out.parent_path());
+}
+
+TEST(Meshlabserver, PrintOrientationScriptOnTheBunny) {
+  // meshlabserver saves the current layer, the new "oriented" one: the core's best pose of the
+  // bunny, resting on z = 0, with face quality for that pose; the log lists five poses.
+  const std::string in = test::sample_bunny_path();
+  const fs::path out = scratch("bunny_oriented.ply");
+  const test::ServerRun run = test::run_meshlabserver(
+      "-i '" + in + "' -o '" + out.string() + "' -m fq fc sa -s '" SLIM_SOURCE_DIR "/examples/print_orientation.mlx'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(run.output.find("Problem with filter"), std::string::npos) << run.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.output, m, std::regex(R"(support proxy[^)]*\) ([0-9.eE+-]+) -> ([0-9.eE+-]+) mm\^3)")))
+      << run.output;
+  const double before = std::stod(m[1]), after = std::stod(m[2]);
+  EXPECT_LT(after, before);
+  EXPECT_NE(run.output.find("5. score"), std::string::npos) << run.output;
+
+  const Surface input = test::load_mesh(in);
+  const OrientationResult core = optimize_orientation(input);
+  EXPECT_NEAR(after, core.best.shadow_volume, 1e-3 * core.best.shadow_volume);
+  vcgx::FaceExtras saved;
+  const Surface result = vcgx::load_surface(out.string(), &saved);
+  ASSERT_EQ(result.F, input.F);
+  EXPECT_LT((result.V - apply_orientation(input, core.rotation).V).cwiseAbs().maxCoeff(), 1e-4);
+  EXPECT_NEAR(result.V.col(2).minCoeff(), 0.0, 1e-5);
+  ASSERT_EQ(saved.quality.size(), input.F.rows());
+  OverhangOptions o;
+  o.plate_tolerance = core.plate_tolerance;
+  const OverhangReport pose = analyse_overhang(result, o);
+  EXPECT_LT((saved.quality - pose.quality).cwiseAbs().maxCoeff(), 1e-3);
   fs::remove_all(out.parent_path());
 }
 

@@ -3,6 +3,7 @@
 
 #include <QJsonObject>
 
+#include "core/orientation.h"
 #include "core/overhang.h"
 #include "filter_checks.h"
 #include "harness.h"
@@ -16,6 +17,7 @@ using slim::test::positions;
 namespace {
 const QString kOverhang = "Overhang Analysis";
 const QString kSlimming = "Support Slimming";
+const QString kOrientation = "Print Orientation";
 
 }  // namespace
 
@@ -26,7 +28,7 @@ TEST(Plugin, LoadsWithItsMetadataAndFilters) {
   EXPECT_EQ(meta.value("name").toString(), "Support Slimming");
   EXPECT_EQ(meta.value("license").toString(), "GPL-3.0-or-later");
   EXPECT_EQ(meta.value("meshlabVersion").toString(), "2020.09");
-  for (const QString& name : {kOverhang, kSlimming}) {
+  for (const QString& name : {kOverhang, kSlimming, kOrientation}) {
     ASSERT_NE(h.action(name), nullptr) << name.toStdString();
     EXPECT_NE(h.plugin()->getClass(h.action(name)), MeshFilterInterface::Generic);
   }
@@ -64,7 +66,8 @@ TEST(Plugin, ExampleScriptsListEveryParameterAndRun) {
   PluginHarness h;
   ASSERT_TRUE(h.ok());
   for (const auto& [file, filter] : {std::make_pair(QString("overhang_analysis.mlx"), kOverhang),
-                                     std::make_pair(QString("support_slimming.mlx"), kSlimming)}) {
+                                     std::make_pair(QString("support_slimming.mlx"), kSlimming),
+                                     std::make_pair(QString("print_orientation.mlx"), kOrientation)}) {
     MeshDocument md;
     test::add_layer(md, test::t_shape(), "T");
     const RichParameterList defaults = h.defaults(filter, md);
@@ -167,4 +170,78 @@ TEST(Plugin, SupportSlimmingRefusesBadSettingsWithoutAddingALayer) {
   EXPECT_FALSE(h.apply(kSlimming, md, params));
   EXPECT_TRUE(h.lastError().contains("resolution")) << h.lastError().toStdString();
   EXPECT_EQ(md.meshList.size(), 1);
+}
+
+TEST(Plugin, PrintOrientationAddsTheBestPoseAsANewLayer) {
+  // The printable mushroom upside down: the new layer "<label> oriented" holds it cap up, resting
+  // on z = 0, where the core puts it; the input layer keeps its positions; the log lists the top
+  // five poses and the proxy and risky area before and after.
+  PluginHarness h;
+  ASSERT_TRUE(h.ok()) << h.error().toStdString();
+  MeshDocument md;
+  const Surface upside_down = test::transformed(test::printable_mushroom(), test::axis_angle({1, 0, 0}, M_PI), {5, 5, 30});
+  MeshModel* input = test::add_layer(md, upside_down, "mushroom");
+  const auto original = positions(*input);
+  RichParameterList params = h.defaults(kOrientation, md);
+  EXPECT_EQ(params.getFloat("alphaMax"), 45.0f);
+  EXPECT_EQ(params.getEnum("searchEffort"), 1);
+  EXPECT_TRUE(params.getBool("applyResult"));
+  ASSERT_TRUE(h.apply(kOrientation, md, params)) << h.lastError().toStdString();
+
+  ASSERT_EQ(md.meshList.size(), 2);
+  MeshModel* out = md.mm();
+  test::expect_oriented_layer(*input, *out, original, OrientationOptions{}, h.logLines());
+  const Surface got = vcgx::to_surface(out->cm);
+  EXPECT_NEAR(got.V.col(2).maxCoeff(), 20.0, 1e-4);  // cap up: the dome's apex on top
+  for (const auto& f : out->cm.face) EXPECT_FALSE(f.IsS());  // nothing overhangs cap up
+}
+
+TEST(Plugin, PrintOrientationOnlyReportsWhenNotApplied) {
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  MeshDocument md;
+  MeshModel* input = test::add_layer(md, test::t_shape(), "T");
+  RichParameterList params = h.defaults(kOrientation, md);
+  params.setValue("applyResult", BoolValue(false));
+  params.setValue("searchEffort", EnumValue(0));
+  ASSERT_TRUE(h.apply(kOrientation, md, params)) << h.lastError().toStdString();
+  EXPECT_EQ(md.meshList.size(), 1);
+  EXPECT_FALSE(input->hasDataMask(MeshModel::MM_FACEQUALITY));
+  EXPECT_TRUE(h.logLines().join("\n").contains("support proxy"));
+  // Bad settings are refused with the core's reason, and nothing is added.
+  params.setValue("applyResult", BoolValue(true));
+  params.setValue("alphaMax", FloatValue(90.0f));
+  EXPECT_FALSE(h.apply(kOrientation, md, params));
+  EXPECT_TRUE(h.lastError().contains("[0, 90)")) << h.lastError().toStdString();
+  EXPECT_EQ(md.meshList.size(), 1);
+}
+
+TEST(Plugin, SupportSlimmingCanOptimizeTheOrientationFirst) {
+  // The bunny: turned into its best pose first, then slimmed there. The new layer is the core's
+  // orientation followed by its slimming; vertex quality (the displacement) is measured from the
+  // oriented part, so it is the deformation alone.
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  MeshDocument md;
+  MeshModel* input = test::add_layer(md, test::load_mesh(test::sample_bunny_path()), "bunny");
+  const auto original = positions(*input);
+  RichParameterList params = h.defaults(kSlimming, md);
+  params.setValue("optimizeOrientation", BoolValue(true));
+  params.setValue("maxIterations", IntValue(4));
+  ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
+  ASSERT_EQ(md.meshList.size(), 2);
+  EXPECT_EQ(positions(*input), original);
+
+  const Surface seen = vcgx::to_surface(input->cm);
+  OrientationOptions oo;
+  oo.plate_tolerance = params.getAbsPerc("plateTolerance");
+  const Surface oriented = apply_orientation(seen, optimize_orientation(seen, oo).rotation);
+  const Surface got = vcgx::to_surface(md.mm()->cm);
+  const Eigen::VectorXd moved = (got.V - oriented.V).rowwise().norm();
+  EXPECT_GT(moved.maxCoeff(), 0.0);
+  EXPECT_LT(moved.maxCoeff(), 0.06 * (seen.V.colwise().maxCoeff() - seen.V.colwise().minCoeff()).norm());
+  for (int v = 0; v < md.mm()->cm.vn; ++v) EXPECT_NEAR(md.mm()->cm.vert[static_cast<size_t>(v)].Q(), moved(v), 1e-4);
+  const QString log = h.logLines().join("\n");
+  EXPECT_TRUE(log.contains("Support Slimming: print direction (")) << log.toStdString();
+  EXPECT_TRUE(log.contains("the deformation alone")) << log.toStdString();
 }

@@ -8,7 +8,7 @@
 #     version or precision, a missing library, a bad filter class) in a blocking dialog, "Error
 #     while loading plugins.", and then loads no extra plugin at all,
 #   - our plugin is mapped into the process,
-#   - Overhang Analysis and Support Slimming, found through MeshLab's filter search (Ctrl+F) and
+#   - Overhang Analysis, Support Slimming and Print Orientation, found through MeshLab's filter search (Ctrl+F) and
 #     applied with their dialogs' defaults, write their results to the log.
 # A control run with a broken plugin next to ours must show that dialog, so a check that can no
 # longer see dialogs fails instead of passing. Logs go to OUT_DIR.
@@ -55,7 +55,7 @@ if [ "${1:-}" = "--inside-xvfb" ]; then
 
   # Each filter as a user finds it: Ctrl+F (MeshLab's filter search), its name, Return; then
   # Apply in its dialog with the defaults, and its result line in the log.
-  for filter in "Overhang Analysis" "Support Slimming"; do
+  for filter in "Overhang Analysis" "Support Slimming" "Print Orientation"; do
     for w in $(xdotool search --onlyvisible --pid "$pid" 2>/dev/null); do
       case "$(xdotool getwindowname "$w" 2>/dev/null)" in "MeshLab "[0-9]*) xdotool windowfocus --sync "$w" || true ;; esac
     done
@@ -120,7 +120,7 @@ if grep -qi "unable to load\|does not seem to be\|has different" "$out/with-plug
   status=1
 fi
 
-for filter in "Overhang Analysis" "Support Slimming"; do
+for filter in "Overhang Analysis" "Support Slimming" "Print Orientation"; do
   grep -qx "filter $filter: applied" "$report" || { echo "FAIL: $filter did not run from the GUI"; status=1; }
 done
 

@@ -2,7 +2,8 @@
 // runs filters, on the sample bunny. The invariants are those of the 2020.09 harness
 // (tests/plugin/plugin_test.cpp): MeshLab accepts the plugin, Overhang Analysis writes quality,
 // colour and selection without moving a vertex, Support Slimming adds a new layer with less risky
-// area and leaves the input alone, and every refusal says why, in the error and in the log, with
+// area and leaves the input alone, Print Orientation adds the part in its best pose as a new layer,
+// and every refusal says why, in the error and in the log, with
 // the document untouched. Only the API differs: errors arrive as MLException.
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include <common/plugins/meshlab_plugin_type.h>
 #include <common/plugins/plugin_manager.h>
 
+#include "core/orientation.h"
 #include "core/overhang.h"
 #include "filter_checks.h"
 #include "harness.h"
@@ -25,7 +27,7 @@ using slim::test::positions;
 namespace {
 const QString kOverhang = "Overhang Analysis";
 const QString kSlimming = "Support Slimming";
-const QString kOrientation = "Print Orientation";  // issue 8; tested once the plugin has it
+const QString kOrientation = "Print Orientation";
 
 }  // namespace
 
@@ -55,7 +57,7 @@ TEST_F(Plugin2022, MeshLabAcceptsThePlugin) {
   EXPECT_EQ(meta.value("name").toString(), "Support Slimming");
   EXPECT_EQ(meta.value("license").toString(), "GPL-3.0-or-later");
   EXPECT_EQ(meta.value("meshlabVersion").toString(), "2022.02");
-  for (const QString& name : {kOverhang, kSlimming}) {
+  for (const QString& name : {kOverhang, kSlimming, kOrientation}) {
     const QAction* a = h.action(name);
     ASSERT_NE(a, nullptr) << name.toStdString();
     EXPECT_NE(h.plugin()->getClass(a), FilterPlugin::Generic);
@@ -144,7 +146,8 @@ TEST_F(Plugin2022, AScriptMissingAParameterIsRefusedByName) {
 TEST_F(Plugin2022, OurExampleScriptsRunThroughMeshLab2022sParser) {
   // examples/*.mlx were written for 2020.09, whose RichPoint3f 2022.02 reads as a RichPosition.
   for (const auto& [file, filter] : {std::make_pair(QString("overhang_analysis.mlx"), kOverhang),
-                                     std::make_pair(QString("support_slimming.mlx"), kSlimming)}) {
+                                     std::make_pair(QString("support_slimming.mlx"), kSlimming),
+                                     std::make_pair(QString("print_orientation.mlx"), kOrientation)}) {
     MeshDocument doc;
     test::add_layer(doc, test::t_shape(), "T");
     const RichParameterList scripted = test::example_script_params(file, filter);
@@ -156,7 +159,7 @@ TEST_F(Plugin2022, OurExampleScriptsRunThroughMeshLab2022sParser) {
 TEST_F(Plugin2022, APointCloudFailsWithAClearMessage) {
   MeshModel* m = md.addNewMesh(QString(), "cloud", true);
   vcg::tri::Allocator<CMeshO>::AddVertices(m->cm, 3);
-  for (const QString& filter : {kOverhang, kSlimming}) {
+  for (const QString& filter : {kOverhang, kSlimming, kOrientation}) {
     EXPECT_FALSE(h.apply(filter, md, h.defaults(filter, md)));
     EXPECT_TRUE(h.lastError().contains("no faces")) << h.lastError().toStdString();
     EXPECT_EQ(md.meshNumber(), 1u);
@@ -176,13 +179,32 @@ TEST_F(Plugin2022, CancelLeavesNoHalfBuiltLayer) {
   EXPECT_EQ(positions(*input), original);
 }
 
-// Hook for issue 8: once filters.cpp lists Print Orientation, this runs it on the bunny through
-// the 2022.02 API. Wire its own invariants here (the lead): the orientation it reports, the risky
-// area it leads to, what it does to the layer.
-TEST_F(Plugin2022, PrintOrientationRunsOnTheBunny) {
-  if (h.action(kOrientation) == nullptr) GTEST_SKIP() << "this build has no Print Orientation filter yet";
-  MeshModel* input = add_bunny();
-  ASSERT_TRUE(h.apply(kOrientation, md, h.defaults(kOrientation, md))) << h.lastError().toStdString();
-  EXPECT_EQ(input->cm.fn, md.mm()->cm.fn);  // orienting a part never adds or removes faces
-  EXPECT_FALSE(h.logLines().isEmpty());
+TEST_F(Plugin2022, PrintOrientationTurnsTheBunnyIntoItsBestPoseAsANewLayer) {
+  // The bunny turned on its back: the new layer holds it in the core's best pose, with less support
+  // than it came with; the input layer stays as it was.
+  MeshModel* input = test::add_layer(
+      md, test::transformed(test::load_mesh(test::sample_bunny_path()), test::axis_angle({1, 0, 0}, M_PI), {0, 0, 0}),
+      "bunny");
+  const auto original = positions(*input);
+  const RichParameterList params = h.defaults(kOrientation, md);
+  ASSERT_TRUE(h.apply(kOrientation, md, params)) << h.lastError().toStdString();
+  ASSERT_EQ(md.meshNumber(), 2u);
+  OrientationOptions options = with_effort(OrientationEffort::Normal);
+  options.alpha_max_deg = params.getFloat("alphaMax");
+  test::expect_oriented_layer(*input, *md.mm(), original, options, h.logLines());
+  EXPECT_LT(h.outputs().at("shadow_volume_after").toDouble(), h.outputs().at("shadow_volume_before").toDouble());
+  EXPECT_LT(h.outputs().at("risky_area_after").toDouble(), h.outputs().at("risky_area_before").toDouble());
+}
+
+TEST_F(Plugin2022, PrintOrientationRefusesBadSettingsAndAddsNothing) {
+  MeshModel* m = add_bunny();
+  const auto original = positions(*m);
+  RichParameterList params = h.defaults(kOrientation, md);
+  params.setValue("alphaMax", FloatValue(90.0f));
+  EXPECT_FALSE(h.apply(kOrientation, md, params));
+  EXPECT_TRUE(h.lastError().startsWith(kOrientation + ": ")) << h.lastError().toStdString();
+  EXPECT_TRUE(h.lastError().contains("[0, 90)")) << h.lastError().toStdString();
+  EXPECT_TRUE(h.logLines().join("\n").contains(h.lastError()));
+  EXPECT_EQ(md.meshNumber(), 1u);
+  EXPECT_EQ(positions(*m), original);
 }

@@ -245,6 +245,10 @@ Surface arch(int arc_segments) {
   return extrude_xz(profile, ear_clip(profile), -5, 5);
 }
 
+Surface printable_mushroom(int segments) {
+  return revolve({{0, 0}, {3, 0}, {3, 8}, {10, 16}, {10, 17}, {6, 19.5}, {0, 20}}, segments);
+}
+
 Surface l_bracket(const LBracket& p) {
   const std::vector<Eigen::Vector2d> profile{{0, 0}, {p.base, 0}, {p.base, p.thickness}, {p.thickness, p.thickness},
                                              {p.thickness, p.upright}, {0, p.upright}};

@@ -64,6 +64,12 @@ Surface mushroom(int segments = 48);
 // semicircular opening of radius 10 (its upper half is the overhang).
 Surface arch(int arc_segments = 24);
 
+// A mushroom designed for printing: stem radius 3 rising to z = 8, a cap of radius 10 whose
+// underside climbs at 49 degrees from the horizontal (z 8 -> 16: self-supporting at 45), a rim up
+// to 17 and the same low dome as mushroom() above it (to 20). Cap up it needs no support at all;
+// upside down it balances on the dome's apex over a shallow, overhanging dome.
+Surface printable_mushroom(int segments = 48);
+
 // An L-bracket: a base plate [0, base] x [-width/2, width/2] x [0, thickness] on the plate and an
 // upright [0, thickness] x ... x [0, upright] at x = 0, one closed manifold. Its largest flat face
 // is the base's underside (base x width), then the upright's back (upright x width), then the
