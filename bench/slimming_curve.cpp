@@ -1,6 +1,6 @@
 // The risky-area reduction against the deviation budget, for both methods, on the sample bunny and
 // the synthetic overhang shapes: the table in the closing note of the slimming work.
-//   slimming_curve [--angle DEG] [--resolution N] [--budgets 1,2,3,5,10] [--iterations N]
+//   slimming_curve [--angle DEG] [--resolution N] [--budgets 1,2,3,5,10] [--iterations N] [--shape NAME]
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   SlimmingOptions base;
   base.max_iterations = 200;
   std::vector<double> budgets{1, 2, 3, 5, 10};
+  std::string only;  // --shape NAME: that shape alone
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--angle") base.alpha_max_deg = std::stod(v);
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
     else if (a == "--iterations") base.max_iterations = std::stoi(v);
     else if (a == "--stall") base.stall_tolerance = std::stod(v);
     else if (a == "--step") base.max_step_deg = std::stod(v);
+    else if (a == "--shape") only = v;
     else if (a == "--budgets") {
       budgets.clear();
       std::stringstream ss(v);
@@ -42,6 +44,7 @@ int main(int argc, char** argv) {
   for (double b : budgets) std::printf(" | %5.1f%% budget             ", b);
   std::printf("\n");
   for (const auto& [name, mesh] : shapes) {
+    if (!only.empty() && name != only) continue;
     for (SlimmingMethod method : {SlimmingMethod::Paper, SlimmingMethod::Coherent}) {
       std::printf("%-9s %-9s", name.c_str(), method == SlimmingMethod::Paper ? "paper" : "coherent");
       for (double b : budgets) {

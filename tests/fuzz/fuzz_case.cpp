@@ -8,6 +8,7 @@
 
 #include "core/embedding.h"
 #include "core/min_rotation.h"
+#include "core/orientation.h"
 #include "core/overhang.h"
 #include "core/tet_mesh.h"
 #include "core/voxel_domain.h"
@@ -141,6 +142,36 @@ void check_min_rotation(const FuzzCase& c, std::ostringstream& problem) {
   }
 }
 
+// Print Orientation (orientation.h) with the case's angle and threads, at the Fast effort: a
+// refusal with a reason, or a rigid turn onto +Z that needs no more support than the pose as given
+// and rests the part on z = 0.
+void check_orientation(const FuzzCase& c, std::ostringstream& problem) {
+  OrientationOptions o = with_effort(OrientationEffort::Fast);
+  o.alpha_max_deg = c.options.alpha_max_deg;
+  o.threads = c.options.threads;
+  try {
+    const OrientationResult r = optimize_orientation(c.surface, o);
+    const Eigen::Matrix3d& R = r.rotation;
+    if (!R.allFinite() || (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9 ||
+        std::abs(R.determinant() - 1.0) > 1e-9)
+      problem << "orientation: not a rotation; ";
+    else if ((R * r.best.direction - Eigen::Vector3d::UnitZ()).norm() > 1e-9)
+      problem << "orientation: the rotation does not take the best direction onto +Z; ";
+    const double scale = std::max({1.0, std::abs(r.as_given.score), std::abs(r.best.score)});
+    if (!std::isfinite(r.best.score) || r.best.score > r.as_given.score + 1e-9 * scale)
+      problem << "orientation: the best pose scores worse than the pose as given; ";
+    if (r.top.empty() || r.top.front().score != r.best.score) problem << "orientation: top does not start with the best; ";
+    const Surface posed = apply_orientation(c.surface, R);
+    const double extent = (c.surface.V.colwise().maxCoeff() - c.surface.V.colwise().minCoeff()).norm();
+    if (!posed.V.allFinite() || std::abs(posed.V.col(2).minCoeff()) > 1e-9 * std::max(1.0, extent))
+      problem << "orientation: the posed part does not rest on z = 0; ";
+  } catch (const std::invalid_argument& e) {
+    check_refusal("orientation", e, problem);
+  } catch (const std::runtime_error& e) {
+    check_refusal("orientation", e, problem);
+  }
+}
+
 void check_slimming(const FuzzCase& c, std::ostringstream& problem) {
   SlimmingOptions o = c.options;
   o.max_memory_bytes = kMemoryBudget;
@@ -240,6 +271,7 @@ std::string run_fuzz_case(const FuzzCase& c) {
   check_analysis(c, problem);
   if (c.options.domain == DomainKind::Voxel) check_domain_and_embedding(c, problem);
   check_min_rotation(c, problem);
+  check_orientation(c, problem);
   check_slimming(c, problem);
   return problem.str();
 }

@@ -39,10 +39,10 @@ FuzzCase decode(const std::uint8_t* data, size_t size);
 std::vector<std::uint8_t> encode(const FuzzCase& c);
 
 // Runs the case through the core: the overhang analysis, the voxel domain and the embedding, the
-// minimal rotation of the mesh's normals, and Support Slimming (cancelled when asked). Returns ""
-// when every outcome is sane: a refusal (std::invalid_argument, std::runtime_error, Cancelled)
-// with a one-line reason, or a result that passes test::slimming_result_problem and the checks
-// here. Otherwise says what was not. Crashes, leaks and undefined behaviour are the sanitizers'.
+// minimal rotation of the mesh's normals, Print Orientation, and Support Slimming (cancelled when
+// asked). Returns "" when every outcome is sane: a refusal (std::invalid_argument,
+// std::runtime_error, Cancelled) with a one-line reason, or a result that passes
+// test::slimming_result_problem and the checks here. Otherwise says what was not. Crashes, leaks and undefined behaviour are the sanitizers'.
 std::string run_fuzz_case(const FuzzCase& c);
 
 }  // namespace slim::fuzz
