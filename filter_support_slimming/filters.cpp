@@ -152,7 +152,7 @@ void log_orientation(const FilterRun& run, const QString& filter, const slim::Or
                         "%.6g mm^3; risky area %.6g -> %.6g mm^2; plate contact %.6g -> %.6g mm^2",
                         given.shadow_volume, best.shadow_volume, given.risky_area, best.risky_area,
                         given.contact_area, best.contact_area));
-  run.info(filter + QString::asprintf(": best poses (score = proxy - %.3g mm x plate contact; lower is better):",
+  run.info(filter + QString::asprintf(": best poses (score = proxy - %.3g mm x plate contact, lower is better):",
                                       r.contact_bonus_height));
   for (size_t k = 0; k < r.top.size() && k < 5; ++k) {
     const slim::OrientationCandidate& c = r.top[k];

@@ -3,8 +3,10 @@
 # private MeshLab prefix in build/prefix; nothing is installed into /usr):
 #   1. Overhang Analysis of the input  -> out/bunny_overhang.ply (risky faces red, selected)
 #   2. Support Slimming                -> out/bunny_slimmed.ply (still-risky faces red, selected)
-#   3. The slicer judge                -> out/eval-bunny/report.md and before_after.png
-# Open both in MeshLab to compare. Idempotent.
+#   3. Print Orientation               -> out/bunny_oriented.ply (the best print pose)
+#   4. The slicer judge                -> out/eval-bunny/report.md and before_after.png
+#   5. The judge with orientation first -> out/eval-bunny-oriented/report.md (three columns)
+# Open the meshes in MeshLab to compare. Idempotent.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/setup.sh"
@@ -22,6 +24,7 @@ report() { grep "^LOG: [0-9]* $1: " "$2" | sed "s/^LOG: [0-9]* $1: /  /; s/; /\n
 
 run overhang_analysis.mlx "$out/bunny_overhang.ply" "$out/bunny_overhang.log"
 run support_slimming.mlx "$out/bunny_slimmed.ply" "$out/bunny_slimmed.log"
+run print_orientation.mlx "$out/bunny_oriented.ply" "$out/bunny_oriented.log"
 
 echo
 echo "The sample bunny, printed along +Z with a 45 degree self-supporting angle:"
@@ -32,12 +35,19 @@ echo
 echo "Support Slimming (examples/support_slimming.mlx, deviation budget 5% of the bbox diagonal):"
 report "Support Slimming" "$out/bunny_slimmed.log"
 echo
+echo "Print Orientation (examples/print_orientation.mlx): the pose that needs the least support"
+report "Print Orientation" "$out/bunny_oriented.log" | head -12
+echo
 echo "Results (open in MeshLab; red = needs support, blue = safe):"
 echo "  input:    $out/bunny_overhang.ply"
 echo "  slimmed:  $out/bunny_slimmed.ply"
+echo "  oriented: $out/bunny_oriented.ply"
 
 # 3. The independent judge: the bunny at 60 mm, sliced by PrusaSlicer before and after, shape
 #    metrics from MeshLab's Hausdorff filter, and a before/after picture.
 echo
 echo "The independent judge (PrusaSlicer support volume, scaled to 60 mm):"
 "$here/scripts/evaluate.sh" "$here/data/bunny.ply" --out "$out/eval-bunny" --name "sample bunny" --quiet
+echo
+echo "The same judge with Print Orientation first: as given, oriented, oriented + slimmed:"
+"$here/scripts/evaluate.sh" "$here/data/bunny.ply" --orient --out "$out/eval-bunny-oriented" --name "sample bunny, oriented" --quiet
