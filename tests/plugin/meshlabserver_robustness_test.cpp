@@ -1,5 +1,6 @@
 // Issue 7 through the real meshlabserver (the private prefix, under xvfb-run): a representative
-// subset of the bad inputs (support/bad_inputs.h, meshlabserver = true) as PLY files and scripts,
+// subset of the bad inputs (support/bad_inputs.h, meshlabserver = true) as PLY files and scripts
+// for Support Slimming and Print Orientation,
 // and hand-written scripts that are wrong in the ways a script can be. meshlabserver must never
 // crash in our filter: a refusal ends the run with our reason in its output.
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <unistd.h>
 
+#include "core/orientation.h"
 #include "core/overhang.h"
 #include "harness.h"
 #include "support/bad_inputs.h"
@@ -125,6 +127,39 @@ TEST_P(BadInputServer, SupportSlimmingSavesASaneLayerOrFailsWithItsReason) {
   const Eigen::Vector3d d = c.options.print_direction.normalized();
   EXPECT_GE((result.V * d).minCoeff(), (input.V * d).minCoeff() - ulps) << c.name;
   EXPECT_LE((result.V - input.V).rowwise().norm().maxCoeff(), c.options.max_deviation_pct / 100.0 * diag + ulps);
+}
+
+TEST_P(BadInputServer, PrintOrientationSavesTheBestPoseOrFailsWithItsReason) {
+  // The oracle is the core on the mesh as read back from the file meshlabserver reads.
+  const BadInput& c = GetParam();
+  const Scratch scratch;
+  const fs::path in = scratch(c.name + ".ply"), out = scratch(c.name + "_oriented.ply"), mlx = scratch(c.name + ".mlx");
+  test::write_ascii_ply(in.string(), c.surface);
+  write_text(mlx, set_value(set_value(example("print_orientation.mlx"), "alphaMax", number(c.options.alpha_max_deg)),
+                            "searchEffort", "0"));
+  fs::remove(out);
+  const test::ServerRun run = test::run_meshlabserver("-i '" + in.string() + "' -o '" + out.string() +
+                                                      "' -m fq fc sa -s '" + mlx.string() + "'");
+  EXPECT_FALSE(crashed(run)) << run.output;
+  const Surface input = vcgx::load_surface(in.string());
+  std::string refusal;
+  const OrientationResult expected = test::fast_orientation(input, c.options.alpha_max_deg, refusal);
+  if (!refusal.empty()) {
+    EXPECT_EQ(run.exit_code, 255) << run.output;
+    EXPECT_TRUE(mentions(run.output, "Problem with filter: Print Orientation")) << run.output;
+    EXPECT_TRUE(mentions(run.output, mentions(refusal, "no faces") ? std::string("no faces") : refusal))
+        << c.name << ": " << refusal << "\n" << run.output;
+    EXPECT_FALSE(fs::exists(out)) << "a result was saved";
+    return;
+  }
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_FALSE(mentions(run.output, "Problem with filter")) << run.output;
+  const Surface result = vcgx::load_surface(out.string());
+  ASSERT_EQ(result.F, input.F);
+  ASSERT_TRUE(result.V.allFinite());
+  const double size = std::max(1.0, input.V.cwiseAbs().maxCoeff());
+  EXPECT_LT((result.V - apply_orientation(input, expected.rotation).V).cwiseAbs().maxCoeff(), 1e-5 * size) << c.name;
+  EXPECT_NEAR(result.V.col(2).minCoeff(), 0.0, 1e-5 * size) << c.name;
 }
 
 INSTANTIATE_TEST_SUITE_P(Catalogue, BadInputServer, ::testing::ValuesIn(server_cases()),

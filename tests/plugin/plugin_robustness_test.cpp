@@ -1,5 +1,5 @@
 // Issue 7 through the plugin as MeshLab runs it: every bad input of the catalogue
-// (support/bad_inputs.h) through both filters on a MeshDocument. A refusal must leave the
+// (support/bad_inputs.h) through the three filters on a MeshDocument. A refusal must leave the
 // document exactly as it was (no new layer, the input layer's data untouched) with the reason in
 // the error message and the log; a success must give a sane layer. Then hand-written .mlx
 // parameter lists that are wrong in the ways a script can be.
@@ -16,6 +16,7 @@
 
 #include <common/filterscript.h>
 
+#include "core/orientation.h"
 #include "core/overhang.h"
 #include "harness.h"
 #include "support/bad_inputs.h"
@@ -30,6 +31,7 @@ using test::PluginHarness;
 namespace {
 const QString kOverhang = "Overhang Analysis";
 const QString kSlimming = "Support Slimming";
+const QString kOrientation = "Print Orientation";
 
 // Everything of a layer a failed filter must leave alone, compared bit for bit (NaN too).
 struct LayerSnapshot {
@@ -165,6 +167,51 @@ TEST_P(BadInputPlugin, OverhangAnalysisColoursTheLayerOrRefusesLeavingItAlone) {
   }
   EXPECT_EQ(mentions(log, "inside out"), c.inside_out) << log;
   EXPECT_EQ(mentions(log, "not consistently oriented"), edge_topology(c.surface).flipped_edges > 0) << log;
+}
+
+TEST_P(BadInputPlugin, PrintOrientationAddsTheBestPoseOrRefusesLeavingTheDocumentAlone) {
+  // The oracle is the core on the layer as the filter reads it: where the core refuses, the filter
+  // refuses with the core's reason and leaves the document as it was; otherwise the new layer is
+  // the core's best pose, finite and resting on z = 0.
+  const BadInput& c = GetParam();
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  MeshDocument md;
+  MeshModel* input = add_case_layer(md, c);
+  const LayerSnapshot before(*input);
+  RichParameterList params = h.defaults(kOrientation, md);
+  params.setValue("alphaMax", FloatValue(float(c.options.alpha_max_deg)));
+  params.setValue("searchEffort", EnumValue(0));
+  const Surface seen = vcgx::to_surface(input->cm);
+  std::string core_refusal;
+  const OrientationResult expected = test::fast_orientation(seen, params.getFloat("alphaMax"), core_refusal);
+  const bool ok = h.apply(kOrientation, md, params);
+  const std::string error = h.lastError().toStdString(), log = h.logLines().join("\n").toStdString();
+  EXPECT_TRUE(LayerSnapshot(*input) == before) << c.name << ": the input layer changed";
+  if (!core_refusal.empty()) {
+    ASSERT_FALSE(ok) << c.name << " was accepted";
+    // A layer with no faces is refused before the core is asked, in the plugin's own words.
+    if (mentions(core_refusal, "no faces")) {
+      EXPECT_EQ(error.rfind("Print Orientation: ", 0), 0u) << error;
+      EXPECT_TRUE(mentions(error, "no faces")) << error;
+    } else {
+      EXPECT_EQ(error, "Print Orientation: " + core_refusal);
+    }
+    EXPECT_NE(log.find(error), std::string::npos) << "the reason is not in the log: " << log;
+    EXPECT_EQ(md.meshList.size(), 1) << c.name << ": a layer was left behind";
+    EXPECT_EQ(md.mm(), input);
+    return;
+  }
+  ASSERT_TRUE(ok) << c.name << ": " << error;
+  ASSERT_EQ(md.meshList.size(), 2);
+  const Surface got = vcgx::to_surface(md.mm()->cm);
+  ASSERT_EQ(got.F, seen.F);
+  ASSERT_TRUE(got.V.allFinite()) << c.name;
+  const Surface posed = apply_orientation(seen, expected.rotation);
+  const double size = std::max(1.0, seen.V.cwiseAbs().maxCoeff());
+  EXPECT_LT((got.V - posed.V).cwiseAbs().maxCoeff(), 1e-5 * size) << c.name;
+  EXPECT_NEAR(got.V.col(2).minCoeff(), 0.0, 1e-5 * size) << c.name;
+  EXPECT_TRUE(mentions(log, "support proxy")) << log;
 }
 
 INSTANTIATE_TEST_SUITE_P(Catalogue, BadInputPlugin, ::testing::ValuesIn(test::bad_inputs()),

@@ -334,4 +334,16 @@ std::string slimming_result_problem(const Surface& input, const SlimmingOptions&
   return why.str();
 }
 
+OrientationResult fast_orientation(const Surface& s, double alpha_max_deg, std::string& refusal) {
+  OrientationOptions o = with_effort(OrientationEffort::Fast);
+  o.alpha_max_deg = static_cast<float>(alpha_max_deg);  // the filter's parameter is a float
+  refusal.clear();
+  try {
+    return optimize_orientation(s, o);
+  } catch (const std::invalid_argument& e) {
+    refusal = e.what();
+    return {};
+  }
+}
+
 }  // namespace slim::test

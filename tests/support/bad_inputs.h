@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/orientation.h"
 #include "core/slimming.h"
 #include "core/surface.h"
 
@@ -52,6 +53,11 @@ std::string slimming_result_problem(const Surface& input, const SlimmingOptions&
 // Writes an ASCII PLY of the surface, as MeshLab and the CLI read it; unlike VCG's exporter it
 // writes NaN and infinite coordinates too ("nan", "inf"). Throws std::runtime_error on failure.
 void write_ascii_ply(const std::string& path, const Surface& s);
+
+// What Print Orientation at its Fast effort should do with `s` at `alpha_max_deg`, by the core:
+// its result; when the core refuses, a default result and the refusal (std::invalid_argument's
+// message) in `refusal`, which is empty otherwise.
+OrientationResult fast_orientation(const Surface& s, double alpha_max_deg, std::string& refusal);
 
 // True when `text` contains `part`, ignoring case.
 bool mentions(const std::string& text, const std::string& part);
