@@ -192,16 +192,26 @@ void add_print_orientation_parameters(const MeshModel&, RichParameterList& par) 
                         "best poses in the log."));
 }
 
+// Where a result layer's positions live. The filters read a layer's own coordinates, not its
+// transformation matrix: a slimmed part stays in its input's frame, so it keeps the input's
+// matrix and shows where the input shows; a part turned into its print pose is in the plate's
+// frame, +Z up on z = 0, so it gets the identity.
+enum class ResultFrame { Input, PrintPose };
+
 // A copy of `input` as a new layer with the given positions and the overhang results of its pose;
 // removed again if anything fails, so the document is never left half changed.
-MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& suffix, const slim::Points& V,
-                            const Eigen::VectorXd& face_quality, const std::vector<bool>& risky,
+MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& suffix, ResultFrame frame,
+                            const slim::Points& V, const Eigen::VectorXd& face_quality, const std::vector<bool>& risky,
                             const Eigen::VectorXd* vertex_quality) {
   MeshModel* output = md.addNewMesh(QString(), input.label() + " " + suffix, true);
   try {
     output->updateDataMask(&input);
     vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(output->cm, input.cm);
-    output->cm.Tr = input.cm.Tr;
+    if (frame == ResultFrame::Input) {
+      output->cm.Tr = input.cm.Tr;
+    } else {
+      output->cm.Tr.SetIdentity();
+    }
     output->updateDataMask(MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR |
                            (vertex_quality ? int(MeshModel::MM_VERTQUALITY) : 0));
     slim::vcgx::write_positions(output->cm, V);
@@ -226,7 +236,7 @@ void apply_print_orientation(MeshDocument& md, const RichParameterList& par, Fil
     pose.alpha_max_deg = par.getFloat("alphaMax");
     pose.plate_tolerance = r.plate_tolerance;
     const slim::OverhangReport report = slim::analyse_overhang(r.inside_out ? slim::flipped(posed) : posed, pose);
-    add_result_layer(md, input, "oriented", posed.V, report.quality, report.risky, nullptr);
+    add_result_layer(md, input, "oriented", ResultFrame::PrintPose, posed.V, report.quality, report.risky, nullptr);
   }
   log_orientation(run, "Print Orientation", r, true);
   run.outputs["shadow_volume_before"] = r.as_given.shadow_volume;
@@ -312,7 +322,8 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
     options.print_direction = Eigen::Vector3d::UnitZ();
   }
   const slim::SlimmingResult r = slim::slim_supports(surface, options);
-  add_result_layer(md, input, "slimmed", r.surface.V, r.after.quality, r.after.risky, &r.displacement);
+  add_result_layer(md, input, "slimmed", orient ? ResultFrame::PrintPose : ResultFrame::Input, r.surface.V,
+                   r.after.quality, r.after.risky, &r.displacement);
   if (orient) log_orientation(run, "Support Slimming", orientation, false);  // slimming notes it below
 
   const slim::IterationStats& last = r.history.back();

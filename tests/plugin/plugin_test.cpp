@@ -245,3 +245,34 @@ TEST(Plugin, SupportSlimmingCanOptimizeTheOrientationFirst) {
   EXPECT_TRUE(log.contains("Support Slimming: print direction (")) << log.toStdString();
   EXPECT_TRUE(log.contains("the deformation alone")) << log.toStdString();
 }
+
+TEST(Plugin, ResultLayersCarryTheMatrixOfTheirFrame) {
+  // The filters work on a layer's own coordinates. A slimmed part stays in the input's frame and
+  // keeps its transformation matrix, so it shows where the input shows; a part in its print pose
+  // (+Z up on z = 0) is in the plate's frame and gets the identity.
+  PluginHarness h;
+  ASSERT_TRUE(h.ok());
+  MeshDocument md;
+  MeshModel* input = test::add_layer(md, test::load_mesh(test::sample_bunny_path()), "bunny");
+  Matrix44m moved;
+  moved.SetRotateDeg(30, vcg::Point3<Scalarm>(1, 0, 0));
+  moved.ElementAt(0, 3) = 7;
+  input->cm.Tr = moved;
+
+  ASSERT_TRUE(h.apply(kOrientation, md, h.defaults(kOrientation, md))) << h.lastError().toStdString();
+  EXPECT_EQ(md.mm()->label(), "bunny oriented");
+  EXPECT_TRUE(md.mm()->cm.Tr == Matrix44m::Identity());
+
+  md.setCurrentMesh(input->id());
+  RichParameterList params = h.defaults(kSlimming, md);
+  params.setValue("maxIterations", IntValue(2));
+  ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
+  EXPECT_EQ(md.mm()->label(), "bunny slimmed");
+  EXPECT_TRUE(md.mm()->cm.Tr == moved);
+
+  md.setCurrentMesh(input->id());
+  params.setValue("optimizeOrientation", BoolValue(true));
+  ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
+  EXPECT_TRUE(md.mm()->cm.Tr == Matrix44m::Identity());
+  EXPECT_TRUE(input->cm.Tr == moved);  // the input layer keeps its own
+}
