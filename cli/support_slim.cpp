@@ -165,10 +165,7 @@ int main(int argc, char** argv) {
       mesh = slim::apply_orientation(mesh, orientation.rotation);
       if (o.plate_tolerance < 0) o.plate_tolerance = orientation.plate_tolerance;  // one plate rule for both steps
       if (!oriented_out.empty()) {
-        slim::OverhangOptions ao;
-        ao.alpha_max_deg = o.alpha_max_deg;
-        ao.plate_tolerance = o.plate_tolerance;
-        const slim::OverhangReport pose = slim::analyse_overhang(orientation.inside_out ? slim::flipped(mesh) : mesh, ao);
+        const slim::OverhangReport pose = slim::print_pose_overhang(mesh, orientation, o.alpha_max_deg);
         slim::vcgx::save_surface(oriented_out, mesh, {pose.quality, pose.risky});
       }
     }

@@ -16,14 +16,18 @@ namespace {
 
 // ---- parameters shared by the filters --------------------------------------------------------
 
+void add_alpha_max_parameter(RichParameterList& par) {
+  par.addParam(RichFloat("alphaMax", 45.0f, "Self-supporting angle (deg)",
+                         "The largest overhang, measured from the vertical, that prints without support. "
+                         "Faces that lean out further are risky. Must be in [0, 90)."));
+}
+
 void add_print_parameters(const MeshModel& m, RichParameterList& par) {
   const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
   par.addParam(meshlab_api::RichDirection(
       "printDirection", vcg::Point3f(0, 0, 1), "Print direction",
       "The direction the part grows in while printing (the build plate's normal). It need not be unit length."));
-  par.addParam(RichFloat("alphaMax", 45.0f, "Self-supporting angle (deg)",
-                         "The largest overhang, measured from the vertical, that prints without support. "
-                         "Faces that lean out further are risky. Must be in [0, 90)."));
+  add_alpha_max_parameter(par);
   par.addParam(RichAbsPerc("plateTolerance", 0.001f * diag, 0.0f, diag, "Build plate tolerance",
                            "Faces whose three vertices all lie within this distance of the lowest point along "
                            "the print direction rest on the build plate and are never risky."));
@@ -182,9 +186,7 @@ const char* const kPrintOrientationInfo =
     "changes no shape; <i>Support Slimming</i> can then deform the part in its new pose.";
 
 void add_print_orientation_parameters(const MeshModel&, RichParameterList& par) {
-  par.addParam(RichFloat("alphaMax", 45.0f, "Self-supporting angle (deg)",
-                         "The largest overhang, measured from the vertical, that prints without support. "
-                         "Faces that lean out further are risky. Must be in [0, 90)."));
+  add_alpha_max_parameter(par);
   par.addParam(RichEnum("searchEffort", 1, QStringList() << "Fast" << "Normal" << "Thorough", "Search effort",
                         kSearchEffortHelp));
   par.addParam(RichBool("applyResult", true, "Apply the result",
@@ -232,10 +234,7 @@ void apply_print_orientation(MeshDocument& md, const RichParameterList& par, Fil
       slim::optimize_orientation(surface, orientation_options(par.getFloat("alphaMax"), par.getEnum("searchEffort")));
   if (par.getBool("applyResult")) {
     const slim::Surface posed = slim::apply_orientation(surface, r.rotation);
-    slim::OverhangOptions pose;
-    pose.alpha_max_deg = par.getFloat("alphaMax");
-    pose.plate_tolerance = r.plate_tolerance;
-    const slim::OverhangReport report = slim::analyse_overhang(r.inside_out ? slim::flipped(posed) : posed, pose);
+    const slim::OverhangReport report = slim::print_pose_overhang(posed, r, par.getFloat("alphaMax"));
     add_result_layer(md, input, "oriented", ResultFrame::PrintPose, posed.V, report.quality, report.risky, nullptr);
   }
   log_orientation(run, "Print Orientation", r, true);

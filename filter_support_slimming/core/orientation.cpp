@@ -315,10 +315,9 @@ OrientationCandidate score_exactly(const Geometry& g, const Eigen::Vector3d& d, 
   OrientationCandidate c;
   c.direction = d;
   c.origin = origin;
-  const bool plate_rule = g.tolerance >= 0.0;
   for (Eigen::Index f = 0; f < g.faces; ++f) {
     const auto i = static_cast<size_t>(f);
-    if (plate_rule && height(g.F(f, 0)) - plate <= g.tolerance && height(g.F(f, 1)) - plate <= g.tolerance &&
+    if (height(g.F(f, 0)) - plate <= g.tolerance && height(g.F(f, 1)) - plate <= g.tolerance &&
         height(g.F(f, 2)) - plate <= g.tolerance) {
       c.contact_area += g.area[i];
       continue;
@@ -600,6 +599,13 @@ Surface apply_orientation(const Surface& surface, const Eigen::Matrix3d& rotatio
   out.V = (surface.V * placement.leftCols<3>().transpose()).rowwise() + placement.col(3).transpose();
   out.V.col(2).array() -= out.V.col(2).minCoeff();  // exactly on z = 0, whatever the rounding above
   return out;
+}
+
+OverhangReport print_pose_overhang(const Surface& posed, const OrientationResult& result, double alpha_max_deg) {
+  OverhangOptions o;
+  o.alpha_max_deg = alpha_max_deg;
+  o.plate_tolerance = result.plate_tolerance;
+  return analyse_overhang(result.inside_out ? flipped(posed) : posed, o);
 }
 
 }  // namespace slim

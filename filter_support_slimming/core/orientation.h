@@ -53,6 +53,7 @@
 
 #include <Eigen/Core>
 
+#include "core/overhang.h"
 #include "core/surface.h"
 
 namespace slim {
@@ -121,5 +122,10 @@ Eigen::Matrix<double, 3, 4> print_placement(const Surface& surface, const Eigen:
 
 // The surface in its print pose (print_placement applied to every vertex; faces unchanged).
 Surface apply_orientation(const Surface& surface, const Eigen::Matrix3d& rotation);
+
+// The overhangs of `posed` (apply_orientation(input, result.rotation)) for print direction +Z,
+// with the search's plate tolerance, turned over when the input was inside out: what the result
+// layer shows.
+OverhangReport print_pose_overhang(const Surface& posed, const OrientationResult& result, double alpha_max_deg);
 
 }  // namespace slim

@@ -83,10 +83,7 @@ void expect_oriented_layer(const MeshModel& input, const MeshModel& out, const s
 
   // Face quality and selection describe the new pose.
   ASSERT_TRUE(out.hasDataMask(MeshModel::MM_FACEQUALITY));
-  OverhangOptions o;
-  o.alpha_max_deg = options.alpha_max_deg;
-  o.plate_tolerance = best.plate_tolerance;
-  const OverhangReport now = analyse_overhang(got, o);
+  const OverhangReport now = print_pose_overhang(got, best, options.alpha_max_deg);
   int selected = 0;
   for (int f = 0; f < out.cm.fn; ++f) {
     EXPECT_NEAR(out.cm.face[static_cast<size_t>(f)].cQ(), now.quality(f), 1e-4);
