@@ -5,7 +5,8 @@
 //   build-*/bench/arap_bench --benchmark_counters_tabular=true
 //
 // Setup        assembly + factorization (the ArapSolver constructor), plate pinned
-// BackSubst    one bare back-substitution, three right-hand sides
+// BackSubst    one bare back-substitution, three right-hand sides (SupernodalSolver)
+// BackSubstCholmodSolve  the same by CHOLMOD's own solve, for comparison
 // Solve        RHS assembly + back-substitution + scatter; counter full/bare = Solve / BackSubst
 // Polar*       closest rotation of every tet's Q = V_t (V_t^0)^-1, from a real deformed state
 // Iteration    local step (polar, L_t = M_t, OpenMP) + global step
@@ -94,6 +95,17 @@ void BM_BackSubst(benchmark::State& state) {
   set_size_counters(state, c);
 }
 
+// The same back-substitution by CHOLMOD's own supernodal solve, for comparison.
+void BM_BackSubstCholmodSolve(benchmark::State& state) {
+  const Case& c = get_case(static_cast<int>(state.range(0)));
+  ArapOptions o;
+  o.own_supernodal_solve = false;
+  const ArapSolver s(c.mesh, c.pins, o);
+  const Eigen::MatrixXd rhs = s.assemble_rhs(c.L, c.mesh.V);
+  for (auto _ : state) benchmark::DoNotOptimize(s.back_substitute(rhs).data());
+  set_size_counters(state, c);
+}
+
 void BM_Rhs(benchmark::State& state) {
   const Case& c = get_case(static_cast<int>(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(c.solver->assemble_rhs(c.L, c.mesh.V).data());
@@ -164,6 +176,7 @@ void sizes(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_Setup)->Apply(sizes);
 BENCHMARK(BM_BackSubst)->Apply(sizes);
+BENCHMARK(BM_BackSubstCholmodSolve)->Apply(sizes);
 BENCHMARK(BM_Rhs)->Apply(sizes);
 BENCHMARK(BM_Solve)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_Polar, Newton, &closest_rotation)->Apply(sizes);

@@ -6,12 +6,17 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
 
+#include "core/parallel_for.h"
+
 #ifdef SLIM_HAVE_CHOLMOD
 #include <Eigen/CholmodSupport>
+
+#include "core/supernodal_solve.h"
 #endif
 
 namespace slim {
@@ -28,13 +33,13 @@ constexpr int kEnergyBlock = 4096;
 constexpr int kParallelRows = 4096;
 
 // OpenBLAS splits its kernels across threads, and the split changes the rounding: on this
-// machine CHOLMOD's supernodal factor + solve gave different bits with OPENBLAS_NUM_THREADS=1
-// and 2 (box grids of 2k to 50k vertices; the same count always repeats exactly). The optimizer's
+// machine CHOLMOD's supernodal factorization gave different bits with OPENBLAS_NUM_THREADS=1 and 2
+// (box grids of 2k to 50k vertices; the same count always repeats exactly). The optimizer's
 // stopping rule reads statistics that must repeat, so BLAS is held at ArapOptions::blas_threads
-// for the duration of each call and restored afterwards. The price is the factorization's
-// parallel speed-up only (setup of a 10k-vertex grid 0.14 s on one thread, 0.08 s on two; at 50k
-// 1.2 s against 1.1 s on a busy 2-core machine); the 3-column solve is memory-bound and gained
-// nothing from a second thread.
+// for the duration of each call and restored afterwards. One thread also keeps OpenBLAS's
+// workers from spinning on the second core after the factorization, which slowed the first
+// iterations' OpenMP loops by half (55k-vertex domain). The back-substitution uses no BLAS
+// (supernodal_solve.h); only CHOLMOD's own solve, when asked for, does.
 //
 // The functions are looked up at run time: they exist only when the BLAS behind CHOLMOD is
 // OpenBLAS (with any other BLAS this does nothing). A plugin's dependencies are loaded with
@@ -102,6 +107,15 @@ struct Components {
   }
 };
 
+#ifdef SLIM_HAVE_CHOLMOD
+// CHOLMOD's supernodal LL^T through Eigen, with the factor itself in reach: the back-substitution
+// runs on it directly (supernodal_solve.h says why).
+class CholmodSupernodal : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+ public:
+  bool view(SupernodalFactor& out) const { return supernodal_view(m_cholmodFactor, out); }
+};
+#endif
+
 }  // namespace
 
 // One factorization, behind whichever backend the options chose.
@@ -112,15 +126,22 @@ struct ArapSolver::Impl {
   std::vector<Eigen::Matrix<double, 3, 4>> rest;  // per tet [-(e1+e2+e3), e1, e2, e3] at rest
   std::vector<int> free_index;                   // #V: row in the unknowns, -1 when held
   std::vector<int> free_vertices, held_vertices;
-  // CSR incidence of the free vertices: entries tet * 4 + corner, tets ascending.
+  // CSR incidence of the free vertices: entries tet * 4 + corner, tets ascending; inc_held marks
+  // the entries whose basis edges end at a held vertex (their terms go to the right-hand side).
   std::vector<int> inc_begin, inc;
+  std::vector<char> inc_held;
+  // assemble_rhs's per-tet gradient terms (#T of 3 by 4, 96 bytes a tet), kept between calls:
+  // allocated afresh, its pages cost more than the assembly itself (55k-vertex domain).
+  mutable std::mutex workspace_mutex;
+  mutable std::vector<Eigen::Matrix<double, 3, 4>> gradient;
 
   ArapOptions options;
   std::string backend;
   int factorizations = 0;
   std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>> ldlt;
 #ifdef SLIM_HAVE_CHOLMOD
-  std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>> cholmod_super;
+  std::unique_ptr<CholmodSupernodal> cholmod_super;
+  std::unique_ptr<SupernodalSolver> supernodal;  // solves on cholmod_super's factor
   std::unique_ptr<Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower>> cholmod_simplicial;
 #endif
 
@@ -222,6 +243,12 @@ void ArapSolver::Impl::build_incidence() {
       const int f = free_index[static_cast<size_t>(T(t, j))];
       if (f >= 0) inc[static_cast<size_t>(fill[static_cast<size_t>(f)]++)] = 4 * t + j;
     }
+  inc_held.assign(inc.size(), 0);
+  for (size_t k = 0; k < inc.size(); ++k) {
+    const int t = inc[k] / 4, j = inc[k] % 4;
+    for (int o = (j == 0 ? 1 : 0); o < (j == 0 ? 4 : 1); ++o)
+      if (free_index[static_cast<size_t>(T(t, o))] < 0) inc_held[k] = 1;
+  }
 }
 
 // K_ff, lower triangle: each tet adds w_t to the Laplacian of its edges (v0, vj), j = 1..3.
@@ -281,9 +308,17 @@ void ArapSolver::Impl::factor(const SparseMatrix& K) {
 #ifdef SLIM_HAVE_CHOLMOD
   if (b == B::Auto) b = B::Cholmod;
   const BlasThreadsScope blas(options.blas_threads);
+  // CHOLMOD's supernodal factorization opens OpenMP regions with a fixed team of
+  // CHOLMOD_OMP_NUM_THREADS (4 in Debian's build) for its copies and scatters, whatever the
+  // process's setting: on two cores that oversubscription spent a third of the setup in thread
+  // wake-ups (bunny domain, 55k unknowns: 1.45-1.63 s against 1.00 s serialized). The copies are
+  // memory-bound and gain nothing from threads.
+  const SerialOpenMPScope serial;
   if (b == B::Cholmod) {
-    cholmod_super = factor_with_metis<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>(K);
+    cholmod_super = factor_with_metis<CholmodSupernodal>(K);
     backend = "CHOLMOD supernodal";
+    SupernodalFactor view;
+    if (options.own_supernodal_solve && cholmod_super->view(view)) supernodal = std::make_unique<SupernodalSolver>(view);
   } else if (b == B::CholmodSimplicial) {
     cholmod_simplicial = factor_with_metis<Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower>>(K);
     backend = "CHOLMOD simplicial";
@@ -311,6 +346,7 @@ ArapSolver::ArapSolver(const TetMesh& rest, const std::vector<int>& pinned, cons
   impl_->split_vertices(pinned);
   impl_->build_incidence();
   if (!impl_->free_vertices.empty()) impl_->factor(impl_->free_matrix());
+  impl_->gradient.assign(static_cast<size_t>(impl_->nt), Eigen::Matrix<double, 3, 4>::Zero());  // its pages, now
 }
 
 ArapSolver::ArapSolver(const TetMesh& rest, const Eigen::VectorXd& weights, const std::vector<int>& pinned,
@@ -321,6 +357,7 @@ ArapSolver::ArapSolver(const TetMesh& rest, const Eigen::VectorXd& weights, cons
   impl_->split_vertices(pinned);
   impl_->build_incidence();
   if (!impl_->free_vertices.empty()) impl_->factor(impl_->free_matrix());
+  impl_->gradient.assign(static_cast<size_t>(impl_->nt), Eigen::Matrix<double, 3, 4>::Zero());  // its pages, now
 }
 
 ArapSolver::~ArapSolver() = default;
@@ -336,15 +373,27 @@ Eigen::MatrixXd ArapSolver::assemble_rhs(const std::vector<Eigen::Matrix3d>& L, 
   m.check_L(L);
   if (V_held.rows() != m.nv) throw std::invalid_argument("ArapSolver: V_held must have one row per vertex");
   const int nf = static_cast<int>(m.free_vertices.size());
+  // Each tet's four gradient terms once (w_t L_t times the rest corners), read by its corners'
+  // rows below: the tets stream in order here, and each row reads 24 bytes per incidence.
+  const std::lock_guard<std::mutex> lock(m.workspace_mutex);
+  std::vector<Eigen::Matrix<double, 3, 4>>& gradient = m.gradient;
+  gradient.resize(static_cast<size_t>(m.nt));
+#pragma omp parallel for schedule(static) if (m.nt >= kParallelRows)
+  for (int t = 0; t < m.nt; ++t) {
+    const double wt = m.w(t);
+    for (int j = 0; j < 4; ++j)
+      gradient[static_cast<size_t>(t)].col(j) = wt * (L[static_cast<size_t>(t)] * m.rest[static_cast<size_t>(t)].col(j));
+  }
   Eigen::MatrixXd rhs(nf, 3);
 #pragma omp parallel for schedule(static) if (nf >= kParallelRows)
   for (int f = 0; f < nf; ++f) {
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
     for (int k = m.inc_begin[static_cast<size_t>(f)]; k < m.inc_begin[static_cast<size_t>(f) + 1]; ++k) {
       const int t = m.inc[static_cast<size_t>(k)] / 4, j = m.inc[static_cast<size_t>(k)] % 4;
+      b += gradient[static_cast<size_t>(t)].col(j);
+      // The other ends of v's basis edges that are held: v1..v3 from corner 0, v0 from the others.
+      if (m.inc_held[static_cast<size_t>(k)] == 0) continue;
       const double wt = m.w(t);
-      b += wt * (L[static_cast<size_t>(t)] * m.rest[static_cast<size_t>(t)].col(j));
-      // The other ends of v's basis edges: v1..v3 from corner 0, v0 from the others.
       for (int o = (j == 0 ? 1 : 0); o < (j == 0 ? 4 : 1); ++o) {
         const int u = m.T(t, o);
         if (m.free_index[static_cast<size_t>(u)] < 0) b += wt * V_held.row(u).transpose();
@@ -364,7 +413,9 @@ Eigen::MatrixXd ArapSolver::back_substitute(const Eigen::MatrixXd& rhs) const {
   bool ok = true;
 #ifdef SLIM_HAVE_CHOLMOD
   const BlasThreadsScope blas(m.options.blas_threads);
-  if (m.cholmod_super) {
+  if (m.supernodal) {
+    x = m.supernodal->solve(rhs);
+  } else if (m.cholmod_super) {
     x = m.cholmod_super->solve(rhs);
     ok = m.cholmod_super->info() == Eigen::Success;
   } else if (m.cholmod_simplicial) {
@@ -387,22 +438,26 @@ Points ArapSolver::solve(const std::vector<Eigen::Matrix3d>& L, const Points& V_
 }
 
 double ArapSolver::energy(const Points& V, const std::vector<Eigen::Matrix3d>& L) const {
+  return energies({&V}, L)(0);
+}
+
+Eigen::VectorXd ArapSolver::energies(const std::vector<const Points*>& shapes, const std::vector<Eigen::Matrix3d>& L) const {
   const Impl& m = *impl_;
   m.check_L(L);
-  if (V.rows() != m.nv) throw std::invalid_argument("ArapSolver: V must have one row per vertex");
+  const int count = static_cast<int>(shapes.size());
+  for (const Points* V : shapes)
+    if (!V || V->rows() != m.nv) throw std::invalid_argument("ArapSolver: V must have one row per vertex");
   const int blocks = (m.nt + kEnergyBlock - 1) / kEnergyBlock;
-  std::vector<double> partial(static_cast<size_t>(blocks), 0.0);
+  Eigen::MatrixXd partial = Eigen::MatrixXd::Zero(count, blocks);
 #pragma omp parallel for schedule(static) if (blocks > 1)
   for (int b = 0; b < blocks; ++b) {
-    double s = 0.0;
     for (int t = b * kEnergyBlock; t < std::min(m.nt, (b + 1) * kEnergyBlock); ++t) {
       const Eigen::Matrix3d R = L[static_cast<size_t>(t)] * m.rest[static_cast<size_t>(t)].rightCols<3>();
-      s += m.w(t) * (edge_matrix(V, m.T.row(t)) - R).squaredNorm();
+      for (int k = 0; k < count; ++k) partial(k, b) += m.w(t) * (edge_matrix(*shapes[static_cast<size_t>(k)], m.T.row(t)) - R).squaredNorm();
     }
-    partial[static_cast<size_t>(b)] = s;
   }
-  double e = 0.0;
-  for (double s : partial) e += s;
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(count);
+  for (int b = 0; b < blocks; ++b) e += partial.col(b);
   return e;
 }
 

@@ -56,15 +56,20 @@ inline Eigen::Matrix3d edge_matrix(const Points& V, const Eigen::Matrix<int, 1, 
 struct ArapOptions {
   enum class Backend {
     Auto,               // CHOLMOD supernodal when built with it, else EigenLDLT
-    Cholmod,            // CHOLMOD supernodal LL^T (BLAS-based: fastest on 3D domains)
+    Cholmod,            // CHOLMOD supernodal LL^T (BLAS-based: fastest on 3D domains), solved by
+                        // SupernodalSolver (supernodal_solve.h)
     CholmodSimplicial,  // CHOLMOD simplicial LL^T (no BLAS)
     EigenLDLT           // Eigen::SimplicialLDLT with AMD ordering (always available)
   };
   Backend backend = Backend::Auto;  // a CHOLMOD backend without CHOLMOD built in throws
-  // Threads OpenBLAS may use inside CHOLMOD's factorization and solves, set for their duration
-  // and restored afterwards. 1 (default): results repeat bit for bit on any machine (see
-  // arap.cpp for the measurement). 0: leave the process's setting alone.
+  // Threads OpenBLAS may use inside CHOLMOD's factorization (and CHOLMOD's own solve), set for
+  // their duration and restored afterwards. 1 (default): results repeat bit for bit whatever the
+  // process's BLAS setting (see arap.cpp for the measurement). 0: leave that setting alone.
   int blas_threads = 1;
+  // With the CHOLMOD supernodal backend: back-substitute with SupernodalSolver on CHOLMOD's
+  // factor (faster for three right-hand sides, see supernodal_solve.h) rather than CHOLMOD's
+  // own solve. false is kept for comparison (tests, benchmarks).
+  bool own_supernodal_solve = true;
   // A connected component with no pinned vertex: false (default) throws; true pins the
   // component's lowest-index vertex, so the component keeps the position V_held gives it.
   bool anchor_floating_components = false;
@@ -92,6 +97,9 @@ class ArapSolver {
 
   // E(V) for any #V by 3 positions (mm^2 times the weights' unit).
   double energy(const Points& V, const std::vector<Eigen::Matrix3d>& L) const;
+  // E of several shapes in one pass over the tets (each #V by 3): the same values, bit for bit,
+  // as energy() of each.
+  Eigen::VectorXd energies(const std::vector<const Points*>& shapes, const std::vector<Eigen::Matrix3d>& L) const;
 
   int num_vertices() const;
   int num_tets() const;

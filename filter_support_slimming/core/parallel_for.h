@@ -9,6 +9,9 @@
 //
 // ThreadScope(threads): the OpenMP thread count for the lifetime of the object (threads > 0), the
 // previous one restored after; threads <= 0 keeps the runtime's default.
+//
+// SerialOpenMPScope: for the lifetime of the object no OpenMP region is active (max-active-levels
+// 0), so a library's regions with a fixed team size run on the calling thread; restored after.
 #pragma once
 
 #include <exception>
@@ -41,11 +44,31 @@ class ThreadScope {
   int previous_ = 1;
 };
 
+class SerialOpenMPScope {
+ public:
+  SerialOpenMPScope() {
+#ifdef _OPENMP
+    previous_ = omp_get_max_active_levels();
+    omp_set_max_active_levels(0);
+#endif
+  }
+  ~SerialOpenMPScope() {
+#ifdef _OPENMP
+    omp_set_max_active_levels(previous_);
+#endif
+  }
+  SerialOpenMPScope(const SerialOpenMPScope&) = delete;
+  SerialOpenMPScope& operator=(const SerialOpenMPScope&) = delete;
+
+ private:
+  int previous_ = 1;
+};
+
 template <class Body>
 void parallel_for(int n, Body&& body) {
   int first_failure = n;
   std::exception_ptr error;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (int i = 0; i < n; ++i) {
     try {
       body(i);

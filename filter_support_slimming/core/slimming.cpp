@@ -379,8 +379,9 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
   Points V = domain.V;
   Points surface_V = input.V;
   double best_shadow = r.before.shadow_volume, best_risky = r.before.risky_area;
-  std::vector<Eigen::Matrix3d> L(static_cast<size_t>(nt)), M(static_cast<size_t>(nt)), extra(static_cast<size_t>(nt));
-  std::vector<Eigen::Matrix3d> blended(coherent ? static_cast<size_t>(nt) : 0);  // reused every iteration
+  // L is written whole every iteration; filled here so that its pages are set up with the rest
+  // of the setup rather than in the first iteration.
+  std::vector<Eigen::Matrix3d> L(static_cast<size_t>(nt), Eigen::Matrix3d::Identity()), extra(static_cast<size_t>(nt));
   std::vector<double> ae_area(static_cast<size_t>(nt)), risky_weight(static_cast<size_t>(nt));
   const double max_step = o.max_step_deg * M_PI / 180.0;
   const double budget = o.max_deviation_pct > 0.0 ? o.max_deviation_pct / 100.0 * diag : HUGE_VAL;
@@ -394,27 +395,27 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
 
   for (int it = 1; it <= o.max_iterations; ++it) {
     r.iterations_run = it;
-    // Local step: M_t from the current shape, R_t from the rest normals turned by M_t.
+    // Local step: M_t from the current shape (into L_t), R_t from the rest normals turned by M_t.
+    // extra_t is written for risky tets only; every other tet's extra rotation is the identity.
     auto local_timer = std::make_unique<StageTimer>(times.local);
     parallel_for(nt, [&](int t) {
       const size_t ts = static_cast<size_t>(t);
-      M[ts] = closest_rotation(edge_matrix(V, domain.T.row(t)) * rest_inverse[ts]);
-      extra[ts].setIdentity();
+      const Eigen::Matrix3d M = closest_rotation(edge_matrix(V, domain.T.row(t)) * rest_inverse[ts]);
+      L[ts] = M;
       ae_area[ts] = risky_weight[ts] = 0.0;
       const auto& pc = pieces[ts];
       if (pc.empty() || tet_feature[ts] >= 0) return;
       // Most surface tets are safe: look before building the patch.
       for (const auto& [face, area] : pc)
-        if ((M[ts] * n0.row(face).transpose()).dot(d) + tau_solve < 0) risky_weight[ts] += area;
-      const bool risky = risky_weight[ts] > 0.0;
-      if (!risky) return;
+        if ((M * n0.row(face).transpose()).dot(d) + tau_solve < 0) risky_weight[ts] += area;
+      if (!(risky_weight[ts] > 0.0)) return;
+      extra[ts].setIdentity();
       Eigen::Matrix3Xd normals(3, static_cast<Eigen::Index>(pc.size()));
       Eigen::VectorXd areas(static_cast<Eigen::Index>(pc.size()));
       for (size_t i = 0; i < pc.size(); ++i) {
-        normals.col(static_cast<Eigen::Index>(i)) = M[ts] * n0.row(pc[i].first).transpose();
+        normals.col(static_cast<Eigen::Index>(i)) = M * n0.row(pc[i].first).transpose();
         areas(static_cast<Eigen::Index>(i)) = pc[i].second;
       }
-      if (!risky) return;
       MinRotationOptions mo;
       mo.tie_break = outward[ts];
       const ProxyRotation pr = proxy_rotation(normals, areas, d, tau_solve, mo, po);
@@ -424,25 +425,28 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
       extra[ts] = Eigen::AngleAxisd(angle, pr.solution.axis).toRotationMatrix();
     });
 
-    // Coherent: neighbours turn together, and safe tets next to risky ones follow.
-    if (coherent) {
-      parallel_for(nt, [&](int t) {
-        const size_t ts = static_cast<size_t>(t);
-        blended[ts] = extra[ts];
-        if (tet_feature[ts] >= 0) return;
-        std::vector<std::pair<double, Eigen::Quaterniond>> items;
-        for (int u : neighbours[ts])
-          if (risky_weight[static_cast<size_t>(u)] > 0.0 && tet_feature[static_cast<size_t>(u)] < 0)
-            items.emplace_back(risky_weight[static_cast<size_t>(u)], Eigen::Quaterniond(extra[static_cast<size_t>(u)]));
-        if (items.empty()) return;
-        const double share = risky_weight[ts] > 0.0 ? cs.smoothing : cs.propagation;
-        const Eigen::Quaterniond mean(average_rotation(items));
-        const Eigen::Quaterniond own(extra[ts]);
-        blended[ts] = own.slerp(share, mean).toRotationMatrix();
-      });
-      extra.swap(blended);
-    }
-    for (int t = 0; t < nt; ++t) L[static_cast<size_t>(t)] = extra[static_cast<size_t>(t)] * M[static_cast<size_t>(t)];
+    // L_t = (extra rotation) M_t. Coherent: neighbours turn together, and safe tets next to risky
+    // ones follow (each tet blends its own extra rotation with its risky neighbours', read only).
+    parallel_for(nt, [&](int t) {
+      const size_t ts = static_cast<size_t>(t);
+      const bool risky = risky_weight[ts] > 0.0;
+      if (!coherent || tet_feature[ts] >= 0 || neighbours[ts].empty()) {
+        if (risky) L[ts] = extra[ts] * L[ts];
+        return;
+      }
+      std::vector<std::pair<double, Eigen::Quaterniond>> items;
+      for (int u : neighbours[ts])
+        if (risky_weight[static_cast<size_t>(u)] > 0.0 && tet_feature[static_cast<size_t>(u)] < 0)
+          items.emplace_back(risky_weight[static_cast<size_t>(u)], Eigen::Quaterniond(extra[static_cast<size_t>(u)]));
+      if (items.empty()) {
+        if (risky) L[ts] = extra[ts] * L[ts];
+        return;
+      }
+      const double share = risky ? cs.smoothing : cs.propagation;
+      const Eigen::Quaterniond mean(average_rotation(items));
+      const Eigen::Quaterniond own = risky ? Eigen::Quaterniond(extra[ts]) : Eigen::Quaterniond::Identity();
+      L[ts] = own.slerp(share, mean).toRotationMatrix() * L[ts];
+    });
 
     // Rigid features: one rotation from all of the feature's faces, one shared L.
     for (int f = 0; f < feature_count; ++f) {
@@ -482,7 +486,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     auto global_timer = std::make_unique<StageTimer>(times.global);
     Points Vnew = arap.solve(L, domain.V);
     global_timer.reset();
-    const double energy_start = arap.energy(V, L), energy_solved = arap.energy(Vnew, L);
+    const Points solved = Vnew;  // the global step's own minimiser, before the guards move it
     bool guarded = false;  // whether the plate, budget or inversion guards moved the solution
     StageTimer measure_timer(times.measure);
     for (Eigen::Index v = 0; v < Vnew.rows(); ++v) {
@@ -533,20 +537,42 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
       }
     }
     // Inversion guard: a step that would turn a tet inside out is cut back to the largest fraction
-    // that keeps every tet positive (bisection), and the run stops there.
-    auto inverted = [&](const Points& P) {
+    // that keeps every tet positive (bisection), and the run stops there. The bisection probes
+    // only the tets that invert at the full step (a tet's volume is a cubic in the fraction, so
+    // another could in principle dip in between): the fraction found is checked on every tet, and
+    // should one be inverted there, the bisection is redone over all of them.
+    auto inverted_among = [&](const Points& P, const std::vector<int>& tets) {
       int count = 0;
-#pragma omp parallel for schedule(static) reduction(+ : count)
-      for (int t = 0; t < nt; ++t) count += edge_matrix(P, domain.T.row(t)).determinant() <= 0.0;
+      const int n = static_cast<int>(tets.size());
+#pragma omp parallel for schedule(static) reduction(+ : count) if (n > 4096)
+      for (int i = 0; i < n; ++i) count += edge_matrix(P, domain.T.row(tets[static_cast<size_t>(i)])).determinant() <= 0.0;
       return count;
     };
+    auto inverted_tets = [&](const Points& P) {
+      std::vector<char> bad(static_cast<size_t>(nt));
+#pragma omp parallel for schedule(static)
+      for (int t = 0; t < nt; ++t) bad[static_cast<size_t>(t)] = edge_matrix(P, domain.T.row(t)).determinant() <= 0.0;
+      std::vector<int> list;
+      for (int t = 0; t < nt; ++t)
+        if (bad[static_cast<size_t>(t)]) list.push_back(t);
+      return list;
+    };
     bool inversion_stop = false;
-    if (inverted(Vnew) > 0) {
+    if (std::vector<int> probe = inverted_tets(Vnew); !probe.empty()) {
       const Points step = Vnew - V;
-      double lo = 0.0, hi = 1.0;
-      for (int b = 0; b < 20; ++b) {
-        const double mid = 0.5 * (lo + hi);
-        (inverted(V + mid * step) == 0 ? lo : hi) = mid;
+      auto largest_fraction = [&](const std::vector<int>& tets) {
+        double lo = 0.0, hi = 1.0;
+        for (int b = 0; b < 20; ++b) {
+          const double mid = 0.5 * (lo + hi);
+          (inverted_among(V + mid * step, tets) == 0 ? lo : hi) = mid;
+        }
+        return lo;
+      };
+      double lo = largest_fraction(probe);
+      if (lo > 0.0 && !inverted_tets(V + lo * step).empty()) {
+        std::vector<int> all(static_cast<size_t>(nt));
+        for (int t = 0; t < nt; ++t) all[static_cast<size_t>(t)] = t;
+        lo = largest_fraction(all);
       }
       Vnew = V + lo * step;
       guarded = true;
@@ -562,16 +588,20 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     st.risky_share = now.risky_share();
     st.risky_deficit = now.risky_deficit;
     st.shadow_volume = now.shadow_volume;
-    st.energy = guarded ? arap.energy(Vnew, L) : energy_solved;
-    st.energy_start = energy_start;
-    st.energy_solved = energy_solved;
+    // One pass over the tets for the energies of the start, the minimiser and the guarded result.
+    const Eigen::VectorXd energies = arap.energies(guarded ? std::vector<const Points*>{&V, &solved, &Vnew}
+                                                           : std::vector<const Points*>{&V, &solved},
+                                                   L);
+    st.energy_start = energies(0);
+    st.energy_solved = energies(1);
+    st.energy = guarded ? energies(2) : energies(1);
     double ae = 0.0;
     for (int t = 0; t < nt; ++t) {
       ae += ae_area[static_cast<size_t>(t)];
       if (risky_weight[static_cast<size_t>(t)] > 0.0) ++st.risky_tets;
     }
     // Zero unless the guard cut a step whose start was already inverted.
-    st.inverted_tets = inversion_stop ? inverted(Vnew) : 0;
+    st.inverted_tets = inversion_stop ? static_cast<int>(inverted_tets(Vnew).size()) : 0;
     st.approximation_error = piece_area > 0.0 ? ae / piece_area : 0.0;
     st.max_displacement = disp.maxCoeff();
     st.mean_displacement = disp.mean();

@@ -218,6 +218,11 @@ TEST(Arap, BackendsAgree) {
     EXPECT_NE(s.backend_name().find("CHOLMOD"), std::string::npos);
     EXPECT_LE((s.solve(L, m.V) - reference).cwiseAbs().maxCoeff(), 1e-9) << s.backend_name();
   }
+  // The supernodal factor solved by CHOLMOD itself rather than by SupernodalSolver.
+  o.backend = Backend::Cholmod;
+  o.own_supernodal_solve = false;
+  const ArapSolver cholmod_solve(m, test::grid_bottom_vertices(8, 7), o);
+  EXPECT_LE((cholmod_solve.solve(L, m.V) - reference).cwiseAbs().maxCoeff(), 1e-9);
 }
 
 // Large enough (5k free vertices, 28k tets) for OpenMP to split the RHS and the energy.

@@ -1,0 +1,331 @@
+#include "core/supernodal_solve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#ifdef SLIM_HAVE_CHOLMOD
+#include <cholmod.h>
+
+#include <limits>
+#endif
+
+namespace slim {
+
+namespace {
+
+// The lanes are only ever passed between inlined helpers of this file, so the ABI note GCC gives
+// for 32-byte vectors without AVX does not concern any interface.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+// Three right-hand sides padded to four lanes: one AVX register, or two SSE2 ones.
+typedef double Lanes __attribute__((vector_size(32)));
+
+inline Lanes load(const double* p) {
+  Lanes v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store(double* p, Lanes v) { __builtin_memcpy(p, &v, sizeof v); }
+
+// Below this many stored entries of L the two halves run on the calling thread (a thread team
+// costs more than the sweep); the bits are the same either way.
+constexpr double kParallelWork = 1 << 18;
+
+// The kernels are built twice where GCC can dispatch at load time: for x86-64-v3 (AVX2 and FMA,
+// most machines today) and for the baseline. Each machine always takes the same one, so results
+// repeat; they may differ in the last bits between machines of different generations.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define SLIM_KERNEL_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SLIM_KERNEL_CLONES
+#endif
+
+// Forward sweep (L y = b) through supernode s, W its #rows by 4 workspace. The updates to rows
+// below its columns go to X, except rows with a shared slot when `shared` is given: those
+// accumulate there (the caller adds them to X in a fixed order).
+SLIM_KERNEL_CLONES
+void forward_supernode(const SupernodalFactor& f, int s, double* X, double* W, const int* shared_slot, double* shared) {
+  const int c0 = f.first_column[s], nc = f.first_column[s + 1] - c0, nr = f.row_start[s + 1] - f.row_start[s];
+  const int* rows = f.rows + f.row_start[s];
+  const double* block = f.values + f.value_start[s];
+  for (int i = 0; i < nc; ++i) store(W + 4 * i, load(X + 4 * (c0 + i)));
+  for (int i = nc; i < nr; ++i) store(W + 4 * i, Lanes{0.0, 0.0, 0.0, 0.0});
+  constexpr int kPanel = 8;
+  for (int j0 = 0; j0 < nc; j0 += kPanel) {
+    const int width = std::min(kPanel, nc - j0), end = j0 + width;
+    for (int j = j0; j < end; ++j) {  // the panel's own triangle
+      const double* col = block + static_cast<size_t>(j) * nr;
+      const Lanes y = load(W + 4 * j) / col[j];
+      store(W + 4 * j, y);
+      for (int i = j + 1; i < end; ++i) store(W + 4 * i, load(W + 4 * i) - col[i] * y);
+    }
+    if (width == kPanel) {  // every row below the panel, eight columns in one pass
+      const double* l[kPanel];
+      Lanes y[kPanel];
+      for (int k = 0; k < kPanel; ++k) {
+        l[k] = block + static_cast<size_t>(j0 + k) * nr;
+        y[k] = load(W + 4 * (j0 + k));
+      }
+      for (int i = end; i < nr; ++i) {
+        const Lanes a = l[0][i] * y[0] + l[1][i] * y[1] + l[2][i] * y[2] + l[3][i] * y[3];
+        const Lanes b = l[4][i] * y[4] + l[5][i] * y[5] + l[6][i] * y[6] + l[7][i] * y[7];
+        store(W + 4 * i, load(W + 4 * i) - (a + b));
+      }
+    } else {
+      for (int j = j0; j < end; ++j) {
+        const double* col = block + static_cast<size_t>(j) * nr;
+        const Lanes y = load(W + 4 * j);
+        for (int i = end; i < nr; ++i) store(W + 4 * i, load(W + 4 * i) - col[i] * y);
+      }
+    }
+  }
+  for (int i = 0; i < nc; ++i) store(X + 4 * (c0 + i), load(W + 4 * i));
+  for (int i = nc; i < nr; ++i) {
+    const int r = rows[i];
+    double* target = shared && shared_slot[r] >= 0 ? shared + 4 * shared_slot[r] : X + 4 * r;
+    store(target, load(target) + load(W + 4 * i));
+  }
+}
+
+// Backward sweep (L^T x = y) through supernode s: reads the rows below its columns, which the
+// sweep has already finished (they belong to its ancestors), and writes its own columns.
+SLIM_KERNEL_CLONES
+void backward_supernode(const SupernodalFactor& f, int s, double* X, double* W) {
+  const int c0 = f.first_column[s], nc = f.first_column[s + 1] - c0, nr = f.row_start[s + 1] - f.row_start[s];
+  const int* rows = f.rows + f.row_start[s];
+  const double* block = f.values + f.value_start[s];
+  for (int i = 0; i < nc; ++i) store(W + 4 * i, load(X + 4 * (c0 + i)));
+  for (int i = nc; i < nr; ++i) store(W + 4 * i, load(X + 4 * rows[i]));
+  constexpr int kPanel = 8;
+  const int last = nc % kPanel == 0 ? kPanel : nc % kPanel;  // the last panel may be narrower
+  for (int j0 = nc - last; j0 >= 0; j0 -= kPanel) {
+    const int width = std::min(kPanel, nc - j0), end = j0 + width;
+    Lanes sum[kPanel] = {};
+    if (width == kPanel) {
+      const double* l[kPanel];
+      for (int k = 0; k < kPanel; ++k) l[k] = block + static_cast<size_t>(j0 + k) * nr;
+      Lanes s0 = {}, s1 = {}, s2 = {}, s3 = {}, s4 = {}, s5 = {}, s6 = {}, s7 = {};
+      for (int i = end; i < nr; ++i) {
+        const Lanes w = load(W + 4 * i);
+        s0 += l[0][i] * w;
+        s1 += l[1][i] * w;
+        s2 += l[2][i] * w;
+        s3 += l[3][i] * w;
+        s4 += l[4][i] * w;
+        s5 += l[5][i] * w;
+        s6 += l[6][i] * w;
+        s7 += l[7][i] * w;
+      }
+      sum[0] = s0, sum[1] = s1, sum[2] = s2, sum[3] = s3, sum[4] = s4, sum[5] = s5, sum[6] = s6, sum[7] = s7;
+    } else {
+      for (int j = j0; j < end; ++j) {
+        const double* col = block + static_cast<size_t>(j) * nr;
+        Lanes acc = {};
+        for (int i = end; i < nr; ++i) acc += col[i] * load(W + 4 * i);
+        sum[j - j0] = acc;
+      }
+    }
+    for (int j = end - 1; j >= j0; --j) {  // the panel's own triangle
+      const double* col = block + static_cast<size_t>(j) * nr;
+      Lanes acc = sum[j - j0];
+      for (int i = j + 1; i < end; ++i) acc += col[i] * load(W + 4 * i);
+      store(W + 4 * j, (load(W + 4 * j) - acc) / col[j]);
+    }
+  }
+  for (int i = 0; i < nc; ++i) store(X + 4 * (c0 + i), load(W + 4 * i));
+}
+
+[[noreturn]] void bad_factor(const std::string& why) {
+  throw std::invalid_argument("SupernodalSolver: the factor is not a postordered supernodal one (" + why + ")");
+}
+
+}  // namespace
+
+#ifdef SLIM_HAVE_CHOLMOD
+bool supernodal_view(const cholmod_factor* L, SupernodalFactor& out) {
+  if (!L || !L->is_super || !L->is_ll || L->itype != CHOLMOD_INT || L->xtype != CHOLMOD_REAL ||
+      L->dtype != CHOLMOD_DOUBLE || L->n > static_cast<size_t>(std::numeric_limits<int>::max()))
+    return false;
+  out.n = static_cast<int>(L->n);
+  out.supernodes = static_cast<int>(L->nsuper);
+  out.first_column = static_cast<const int*>(L->super);
+  out.row_start = static_cast<const int*>(L->pi);
+  out.value_start = static_cast<const int*>(L->px);
+  out.rows = static_cast<const int*>(L->s);
+  out.values = static_cast<const double*>(L->x);
+  out.permutation = static_cast<const int*>(L->Perm);
+  return true;
+}
+#endif
+
+struct SupernodalSolver::Plan {
+  std::vector<int> shared;                            // supernodes above both halves, ascending
+  std::vector<std::pair<int, int>> halves[2];         // subtrees as supernode ranges [first, last]
+  std::vector<int> shared_slot;                       // n: a shared supernode's column -> slot, else -1
+  int shared_columns = 0;
+  int max_rows = 0;
+  double work[2] = {0.0, 0.0}, shared_work = 0.0;
+};
+
+SupernodalSolver::SupernodalSolver(const SupernodalFactor& f) : f_(f), plan_(std::make_unique<Plan>()) {
+  const int n = f.n, ns = f.supernodes;
+  if (n < 0 || ns < 0 || (ns > 0 && (!f.first_column || !f.row_start || !f.value_start || !f.rows || !f.values)) ||
+      (n > 0 && !f.permutation))
+    bad_factor("missing arrays");
+  if (ns == 0 ? n != 0 : (f.first_column[0] != 0 || f.first_column[ns] != n || f.row_start[0] != 0))
+    bad_factor("the supernodes do not cover the columns");
+  Plan& p = *plan_;
+  std::vector<int> column_owner(static_cast<size_t>(n)), parent(static_cast<size_t>(ns), -1);
+  std::vector<double> work(static_cast<size_t>(ns));
+  for (int s = 0; s < ns; ++s) {
+    const int c0 = f.first_column[s], nc = f.first_column[s + 1] - c0, nr = f.row_start[s + 1] - f.row_start[s];
+    if (nc <= 0 || nr < nc) bad_factor("supernode " + std::to_string(s) + " has no columns or too few rows");
+    const int* rows = f.rows + f.row_start[s];
+    for (int i = 0; i < nr; ++i)
+      if (i < nc ? rows[i] != c0 + i : (rows[i] <= rows[i - 1] || rows[i] >= n))
+        bad_factor("supernode " + std::to_string(s) + " has rows out of order");
+    for (int c = c0; c < c0 + nc; ++c) column_owner[static_cast<size_t>(c)] = s;
+    work[static_cast<size_t>(s)] = static_cast<double>(nc) * nr;
+    p.max_rows = std::max(p.max_rows, nr);
+  }
+  std::vector<int> seen(static_cast<size_t>(n), 0);
+  for (int k = 0; k < n; ++k) {
+    const int r = f.permutation[k];
+    if (r < 0 || r >= n || seen[static_cast<size_t>(r)]++) bad_factor("the permutation repeats or leaves a row");
+  }
+
+  // The supernodal elimination tree: a supernode's parent owns its first row below its columns.
+  std::vector<double> subtree(work);
+  std::vector<int> first(static_cast<size_t>(ns));
+  std::vector<std::vector<int>> children(static_cast<size_t>(ns));
+  std::vector<int> candidates;  // subtree roots not yet assigned
+  for (int s = 0; s < ns; ++s) {
+    const int nc = f.first_column[s + 1] - f.first_column[s], nr = f.row_start[s + 1] - f.row_start[s];
+    first[static_cast<size_t>(s)] = children[static_cast<size_t>(s)].empty() ? s : first[static_cast<size_t>(children[static_cast<size_t>(s)].front())];
+    if (nr == nc) {
+      candidates.push_back(s);
+      continue;
+    }
+    const int up = column_owner[static_cast<size_t>(f.rows[f.row_start[s] + nc])];
+    if (up <= s) bad_factor("supernode " + std::to_string(s) + " comes after its parent");
+    parent[static_cast<size_t>(s)] = up;
+    subtree[static_cast<size_t>(up)] += subtree[static_cast<size_t>(s)];
+    children[static_cast<size_t>(up)].push_back(s);
+  }
+  // Postorder: a subtree is the contiguous range [first, root]. Checked, as the halves rely on it.
+  for (int s = 0; s < ns; ++s) {
+    const std::vector<int>& kids = children[static_cast<size_t>(s)];
+    for (size_t c = 0; c < kids.size(); ++c)
+      if (c + 1 == kids.size() ? kids[c] != s - 1 : first[static_cast<size_t>(kids[c + 1])] != kids[c] + 1)
+        bad_factor("the supernodes are not in postorder");
+  }
+
+  // Which subtrees make the two halves: the candidates start as the roots, and the heaviest one
+  // is split again and again (its root goes to the shared part, done after the halves, its
+  // children become candidates). Each state deals the candidates to the lighter half, heaviest
+  // first, and the state with the shortest estimated time, shared + heavier half, is kept.
+  auto deal = [&](std::vector<int> subtrees, std::vector<std::pair<int, int>> (&halves)[2], double (&load)[2]) {
+    std::sort(subtrees.begin(), subtrees.end(), [&](int a, int b) {
+      return subtree[static_cast<size_t>(a)] != subtree[static_cast<size_t>(b)] ? subtree[static_cast<size_t>(a)] > subtree[static_cast<size_t>(b)] : a < b;
+    });
+    for (int h = 0; h < 2; ++h) {
+      halves[h].clear();
+      load[h] = 0.0;
+    }
+    for (int c : subtrees) {
+      const int h = load[1] < load[0] ? 1 : 0;
+      halves[h].emplace_back(first[static_cast<size_t>(c)], c);
+      load[h] += subtree[static_cast<size_t>(c)];
+    }
+    return std::max(load[0], load[1]);
+  };
+  std::vector<int> shared;
+  double shared_work = 0.0, best_time = HUGE_VAL;
+  constexpr int kMaxSplits = 64;  // the shared part only grows: a good split is an early one
+  for (int split = 0; split <= kMaxSplits; ++split) {
+    std::vector<std::pair<int, int>> halves[2];
+    double load[2];
+    const double time = shared_work + deal(candidates, halves, load);
+    if (time < best_time) {
+      best_time = time;
+      p.shared = shared;
+      p.shared_work = shared_work;
+      for (int h = 0; h < 2; ++h) {
+        p.halves[h] = halves[h];
+        p.work[h] = load[h];
+      }
+    }
+    int heaviest = -1;
+    for (int c : candidates)
+      if (!children[static_cast<size_t>(c)].empty() && (heaviest < 0 || subtree[static_cast<size_t>(c)] > subtree[static_cast<size_t>(heaviest)]))
+        heaviest = c;
+    if (heaviest < 0) break;
+    candidates.erase(std::find(candidates.begin(), candidates.end(), heaviest));
+    shared.push_back(heaviest);
+    shared_work += work[static_cast<size_t>(heaviest)];
+    candidates.insert(candidates.end(), children[static_cast<size_t>(heaviest)].begin(), children[static_cast<size_t>(heaviest)].end());
+  }
+  std::sort(p.shared.begin(), p.shared.end());
+  for (auto& h : p.halves) std::sort(h.begin(), h.end());
+  p.shared_slot.assign(static_cast<size_t>(n), -1);
+  for (int s : p.shared)
+    for (int c = f.first_column[s]; c < f.first_column[s + 1]; ++c) p.shared_slot[static_cast<size_t>(c)] = p.shared_columns++;
+}
+
+SupernodalSolver::~SupernodalSolver() = default;
+SupernodalSolver::SupernodalSolver(SupernodalSolver&&) noexcept = default;
+SupernodalSolver& SupernodalSolver::operator=(SupernodalSolver&&) noexcept = default;
+
+double SupernodalSolver::half_work(int half) const { return plan_->work[half == 0 ? 0 : 1]; }
+double SupernodalSolver::shared_work() const { return plan_->shared_work; }
+
+Eigen::MatrixXd SupernodalSolver::solve(const Eigen::MatrixXd& rhs) const {
+  const SupernodalFactor& f = f_;
+  const Plan& p = *plan_;
+  if (rhs.rows() != f.n || rhs.cols() != 3) throw std::invalid_argument("SupernodalSolver: the right-hand side must be n by 3");
+  std::vector<double> X(4 * static_cast<size_t>(f.n), 0.0);
+  for (int k = 0; k < f.n; ++k)
+    for (int c = 0; c < 3; ++c) X[4 * static_cast<size_t>(k) + c] = rhs(f.permutation[k], c);
+  const size_t workspace = 4 * static_cast<size_t>(p.max_rows);
+  std::vector<double> W(2 * workspace), shared(2 * 4 * static_cast<size_t>(p.shared_columns), 0.0);
+  const bool parallel = p.work[0] + p.work[1] >= kParallelWork;
+#ifdef _OPENMP
+  const int threads = std::min(2, omp_get_max_threads());
+#endif
+
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if (parallel)
+  for (int half = 0; half < 2; ++half) {
+    double* w = W.data() + half * workspace;
+    double* acc = shared.data() + half * 4 * static_cast<size_t>(p.shared_columns);
+    for (const auto& [first, last] : p.halves[half])
+      for (int s = first; s <= last; ++s) forward_supernode(f, s, X.data(), w, p.shared_slot.data(), acc);
+  }
+  for (int half = 0; half < 2; ++half)  // the halves' updates to the shared columns, in order
+    for (int s : p.shared)
+      for (int c = f.first_column[s]; c < f.first_column[s + 1]; ++c) {
+        const double* a = shared.data() + 4 * (half * static_cast<size_t>(p.shared_columns) + static_cast<size_t>(p.shared_slot[static_cast<size_t>(c)]));
+        store(X.data() + 4 * static_cast<size_t>(c), load(X.data() + 4 * static_cast<size_t>(c)) + load(a));
+      }
+  for (int s : p.shared) forward_supernode(f, s, X.data(), W.data(), nullptr, nullptr);
+
+  for (auto s = p.shared.rbegin(); s != p.shared.rend(); ++s) backward_supernode(f, *s, X.data(), W.data());
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if (parallel)
+  for (int half = 0; half < 2; ++half) {
+    double* w = W.data() + half * workspace;
+    for (auto range = p.halves[half].rbegin(); range != p.halves[half].rend(); ++range)
+      for (int s = range->second; s >= range->first; --s) backward_supernode(f, s, X.data(), w);
+  }
+
+  Eigen::MatrixXd x(f.n, 3);
+  for (int k = 0; k < f.n; ++k)
+    for (int c = 0; c < 3; ++c) x(f.permutation[k], c) = X[4 * static_cast<size_t>(k) + c];
+  return x;
+}
+
+}  // namespace slim
