@@ -37,20 +37,11 @@ inline void store(double* p, Lanes v) { __builtin_memcpy(p, &v, sizeof v); }
 // costs more than the sweep); the bits are the same either way.
 constexpr double kParallelWork = 1 << 18;
 
-// The kernels are built twice where GCC can dispatch at load time: for x86-64-v3 (AVX2 and FMA,
-// most machines today) and for the baseline. Each machine always takes the same one, so results
-// repeat; they may differ in the last bits between machines of different generations.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define SLIM_KERNEL_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define SLIM_KERNEL_CLONES
-#endif
-
 // Forward sweep (L y = b) through supernode s, W its #rows by 4 workspace. The updates to rows
 // below its columns go to X, except rows with a shared slot when `shared` is given: those
 // accumulate there (the caller adds them to X in a fixed order).
-SLIM_KERNEL_CLONES
-void forward_supernode(const SupernodalFactor& f, int s, double* X, double* W, const int* shared_slot, double* shared) {
+[[gnu::always_inline]] inline void forward_supernode(const SupernodalFactor& f, int s, double* X, double* W,
+                                                     const int* shared_slot, double* shared) {
   const int c0 = f.first_column[s], nc = f.first_column[s + 1] - c0, nr = f.row_start[s + 1] - f.row_start[s];
   const int* rows = f.rows + f.row_start[s];
   const double* block = f.values + f.value_start[s];
@@ -95,8 +86,7 @@ void forward_supernode(const SupernodalFactor& f, int s, double* X, double* W, c
 
 // Backward sweep (L^T x = y) through supernode s: reads the rows below its columns, which the
 // sweep has already finished (they belong to its ancestors), and writes its own columns.
-SLIM_KERNEL_CLONES
-void backward_supernode(const SupernodalFactor& f, int s, double* X, double* W) {
+[[gnu::always_inline]] inline void backward_supernode(const SupernodalFactor& f, int s, double* X, double* W) {
   const int c0 = f.first_column[s], nc = f.first_column[s + 1] - c0, nr = f.row_start[s + 1] - f.row_start[s];
   const int* rows = f.rows + f.row_start[s];
   const double* block = f.values + f.value_start[s];
@@ -141,6 +131,25 @@ void backward_supernode(const SupernodalFactor& f, int s, double* X, double* W) 
   for (int i = 0; i < nc; ++i) store(X + 4 * (c0 + i), load(W + 4 * i));
 }
 
+// The sweeps over a list of supernodes, built twice on x86-64: for the baseline (SSE2) and for
+// AVX2 with FMA, the kernels above inlined into each. Which one runs is chosen once per solver
+// (SupernodalKernels), so a machine always gives the same bits; two machines of different
+// generations may differ in the last bits.
+#define SLIM_DEFINE_SWEEPS(SUFFIX, TARGET)                                                                  \
+  TARGET void forward_range##SUFFIX(const SupernodalFactor& f, int first, int last, double* X, double* W,   \
+                                    const int* shared_slot, double* shared) {                               \
+    for (int s = first; s <= last; ++s) forward_supernode(f, s, X, W, shared_slot, shared);                 \
+  }                                                                                                         \
+  TARGET void backward_range##SUFFIX(const SupernodalFactor& f, int first, int last, double* X, double* W) { \
+    for (int s = last; s >= first; --s) backward_supernode(f, s, X, W);                                     \
+  }
+SLIM_DEFINE_SWEEPS(_baseline, )
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define SLIM_HAVE_AVX2_KERNELS 1
+SLIM_DEFINE_SWEEPS(_avx2, __attribute__((target("avx2,fma"))))
+#endif
+#undef SLIM_DEFINE_SWEEPS
+
 [[noreturn]] void bad_factor(const std::string& why) {
   throw std::invalid_argument("SupernodalSolver: the factor is not a postordered supernodal one (" + why + ")");
 }
@@ -171,9 +180,15 @@ struct SupernodalSolver::Plan {
   int shared_columns = 0;
   int max_rows = 0;
   double work[2] = {0.0, 0.0}, shared_work = 0.0;
+  using Forward = void (*)(const SupernodalFactor&, int, int, double*, double*, const int*, double*);
+  using Backward = void (*)(const SupernodalFactor&, int, int, double*, double*);
+  Forward forward = forward_range_baseline;
+  Backward backward = backward_range_baseline;
+  bool avx2 = false;
 };
 
-SupernodalSolver::SupernodalSolver(const SupernodalFactor& f) : f_(f), plan_(std::make_unique<Plan>()) {
+SupernodalSolver::SupernodalSolver(const SupernodalFactor& f, SupernodalKernels kernels)
+    : f_(f), plan_(std::make_unique<Plan>()) {
   const int n = f.n, ns = f.supernodes;
   if (n < 0 || ns < 0 || (ns > 0 && (!f.first_column || !f.row_start || !f.value_start || !f.rows || !f.values)) ||
       (n > 0 && !f.permutation))
@@ -272,6 +287,16 @@ SupernodalSolver::SupernodalSolver(const SupernodalFactor& f) : f_(f), plan_(std
     candidates.insert(candidates.end(), children[static_cast<size_t>(heaviest)].begin(), children[static_cast<size_t>(heaviest)].end());
   }
   std::sort(p.shared.begin(), p.shared.end());
+
+#ifdef SLIM_HAVE_AVX2_KERNELS
+  if (kernels == SupernodalKernels::Auto && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
+    p.forward = forward_range_avx2;
+    p.backward = backward_range_avx2;
+    p.avx2 = true;
+  }
+#else
+  (void)kernels;
+#endif
   for (auto& h : p.halves) std::sort(h.begin(), h.end());
   p.shared_slot.assign(static_cast<size_t>(n), -1);
   for (int s : p.shared)
@@ -284,6 +309,7 @@ SupernodalSolver& SupernodalSolver::operator=(SupernodalSolver&&) noexcept = def
 
 double SupernodalSolver::half_work(int half) const { return plan_->work[half == 0 ? 0 : 1]; }
 double SupernodalSolver::shared_work() const { return plan_->shared_work; }
+const char* SupernodalSolver::kernels() const { return plan_->avx2 ? "AVX2" : "baseline"; }
 
 Eigen::MatrixXd SupernodalSolver::solve(const Eigen::MatrixXd& rhs) const {
   const SupernodalFactor& f = f_;
@@ -303,8 +329,7 @@ Eigen::MatrixXd SupernodalSolver::solve(const Eigen::MatrixXd& rhs) const {
   for (int half = 0; half < 2; ++half) {
     double* w = W.data() + half * workspace;
     double* acc = shared.data() + half * 4 * static_cast<size_t>(p.shared_columns);
-    for (const auto& [first, last] : p.halves[half])
-      for (int s = first; s <= last; ++s) forward_supernode(f, s, X.data(), w, p.shared_slot.data(), acc);
+    for (const auto& [first, last] : p.halves[half]) p.forward(f, first, last, X.data(), w, p.shared_slot.data(), acc);
   }
   for (int half = 0; half < 2; ++half)  // the halves' updates to the shared columns, in order
     for (int s : p.shared)
@@ -312,14 +337,14 @@ Eigen::MatrixXd SupernodalSolver::solve(const Eigen::MatrixXd& rhs) const {
         const double* a = shared.data() + 4 * (half * static_cast<size_t>(p.shared_columns) + static_cast<size_t>(p.shared_slot[static_cast<size_t>(c)]));
         store(X.data() + 4 * static_cast<size_t>(c), load(X.data() + 4 * static_cast<size_t>(c)) + load(a));
       }
-  for (int s : p.shared) forward_supernode(f, s, X.data(), W.data(), nullptr, nullptr);
+  for (int s : p.shared) p.forward(f, s, s, X.data(), W.data(), nullptr, nullptr);
 
-  for (auto s = p.shared.rbegin(); s != p.shared.rend(); ++s) backward_supernode(f, *s, X.data(), W.data());
+  for (auto s = p.shared.rbegin(); s != p.shared.rend(); ++s) p.backward(f, *s, *s, X.data(), W.data());
 #pragma omp parallel for schedule(static, 1) num_threads(threads) if (parallel)
   for (int half = 0; half < 2; ++half) {
     double* w = W.data() + half * workspace;
     for (auto range = p.halves[half].rbegin(); range != p.halves[half].rend(); ++range)
-      for (int s = range->second; s >= range->first; --s) backward_supernode(f, s, X.data(), w);
+      p.backward(f, range->first, range->second, X.data(), w);
   }
 
   Eigen::MatrixXd x(f.n, 3);

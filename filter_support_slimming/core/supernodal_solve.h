@@ -23,7 +23,8 @@
 // solve(rhs): rhs #n by 3 (any units) -> K^-1 rhs, #n by 3. Deterministic: the schedule (which
 // subtrees form the two halves) depends on the factor alone, and the halves' contributions to
 // their common ancestors are added in a fixed order, so the bits do not depend on the thread
-// count (a run with one thread does both halves in turn).
+// count (a run with one thread does both halves in turn). The kernels are built for the baseline
+// and for AVX2 + FMA; a machine always runs the same one, and the two may differ in the last bits.
 #pragma once
 
 #include <memory>
@@ -50,11 +51,15 @@ struct SupernodalFactor {
 bool supernodal_view(const struct cholmod_factor_struct* L, SupernodalFactor& out);
 #endif
 
+// Which build of the sweep kernels runs: Auto takes the AVX2 + FMA one on x86-64 CPUs that have
+// both, else the baseline; Baseline always takes the baseline (for tests and comparisons).
+enum class SupernodalKernels { Auto, Baseline };
+
 class SupernodalSolver {
  public:
   // Checks the view's structure (throws std::invalid_argument when it is not a postordered
-  // supernodal factor) and plans the two halves of the sweeps.
-  explicit SupernodalSolver(const SupernodalFactor& factor);
+  // supernodal factor), plans the two halves of the sweeps and picks the kernels.
+  explicit SupernodalSolver(const SupernodalFactor& factor, SupernodalKernels kernels = SupernodalKernels::Auto);
   ~SupernodalSolver();
   SupernodalSolver(SupernodalSolver&&) noexcept;
   SupernodalSolver& operator=(SupernodalSolver&&) noexcept;
@@ -65,6 +70,7 @@ class SupernodalSolver {
   // half and in the common ancestors done after (forward) or before (backward) the halves.
   double half_work(int half) const;
   double shared_work() const;
+  const char* kernels() const;  // "AVX2" or "baseline"
 
  private:
   struct Plan;

@@ -86,15 +86,18 @@ Eigen::MatrixXd random_rhs(int n, unsigned seed) {
   return b;
 }
 
+// Both builds of the kernels (AVX2 + FMA where the CPU has them, and the baseline).
 void expect_solves(const SparseMatrix& K, unsigned seed) {
   const Factor factor(K);
-  const SupernodalSolver solver(factor.view());
   const Eigen::MatrixXd b = random_rhs(static_cast<int>(K.rows()), seed);
-  const Eigen::MatrixXd x = solver.solve(b);
   const Eigen::MatrixXd oracle = factor.solve(b);
-  EXPECT_LE((x - oracle).norm(), 1e-12 * oracle.norm()) << K.rows();
-  const Eigen::MatrixXd residual = K.selfadjointView<Eigen::Lower>() * x - b;
-  EXPECT_LE(residual.norm(), 1e-11 * b.norm()) << K.rows();
+  for (SupernodalKernels kernels : {SupernodalKernels::Auto, SupernodalKernels::Baseline}) {
+    const SupernodalSolver solver(factor.view(), kernels);
+    const Eigen::MatrixXd x = solver.solve(b);
+    EXPECT_LE((x - oracle).norm(), 1e-12 * oracle.norm()) << K.rows() << " " << solver.kernels();
+    const Eigen::MatrixXd residual = K.selfadjointView<Eigen::Lower>() * x - b;
+    EXPECT_LE(residual.norm(), 1e-11 * b.norm()) << K.rows() << " " << solver.kernels();
+  }
 }
 
 }  // namespace
@@ -124,20 +127,33 @@ TEST(SupernodalSolve, SplitsTheTreeIntoBalancedHalves) {
   EXPECT_LT(shared, a + b) << "the part both halves wait for should be the smaller one";
 }
 
+TEST(SupernodalSolve, AutoTakesTheAvx2KernelsWhereTheCpuHasThem) {
+  const Factor factor(grid_matrix(3, 3, 3));
+#if defined(__x86_64__)
+  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+  const bool avx2 = false;
+#endif
+  EXPECT_STREQ(SupernodalSolver(factor.view()).kernels(), avx2 ? "AVX2" : "baseline");
+  EXPECT_STREQ(SupernodalSolver(factor.view(), SupernodalKernels::Baseline).kernels(), "baseline");
+}
+
 #ifdef _OPENMP
 TEST(SupernodalSolve, SameBitsOnOneAndTwoThreads) {
   const Factor factor(grid_matrix(26, 24, 22));
-  const SupernodalSolver solver(factor.view());
   const Eigen::MatrixXd b = random_rhs(static_cast<int>(factor.rows()), 6);
-  const int before = omp_get_max_threads();
-  omp_set_num_threads(1);
-  const Eigen::MatrixXd one = solver.solve(b);
-  omp_set_num_threads(2);
-  const Eigen::MatrixXd two = solver.solve(b);
-  const Eigen::MatrixXd again = solver.solve(b);
-  omp_set_num_threads(before);
-  EXPECT_TRUE(one == two);
-  EXPECT_TRUE(two == again);
+  for (SupernodalKernels kernels : {SupernodalKernels::Auto, SupernodalKernels::Baseline}) {
+    const SupernodalSolver solver(factor.view(), kernels);
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const Eigen::MatrixXd one = solver.solve(b);
+    omp_set_num_threads(2);
+    const Eigen::MatrixXd two = solver.solve(b);
+    const Eigen::MatrixXd again = solver.solve(b);
+    omp_set_num_threads(before);
+    EXPECT_TRUE(one == two) << solver.kernels();
+    EXPECT_TRUE(two == again) << solver.kernels();
+  }
 }
 #endif
 
