@@ -412,10 +412,10 @@ Eigen::MatrixXd ArapSolver::back_substitute(const Eigen::MatrixXd& rhs) const {
   Eigen::MatrixXd x;
   bool ok = true;
 #ifdef SLIM_HAVE_CHOLMOD
-  const BlasThreadsScope blas(m.options.blas_threads);
   if (m.supernodal) {
-    x = m.supernodal->solve(rhs);
+    x = m.supernodal->solve(rhs);  // no BLAS
   } else if (m.cholmod_super) {
+    const BlasThreadsScope blas(m.options.blas_threads);
     x = m.cholmod_super->solve(rhs);
     ok = m.cholmod_super->info() == Eigen::Success;
   } else if (m.cholmod_simplicial) {

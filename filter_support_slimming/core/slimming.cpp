@@ -541,17 +541,18 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     // only the tets that invert at the full step (a tet's volume is a cubic in the fraction, so
     // another could in principle dip in between): the fraction found is checked on every tet, and
     // should one be inverted there, the bisection is redone over all of them.
+    auto is_inverted = [&](const Points& P, int t) { return edge_matrix(P, domain.T.row(t)).determinant() <= 0.0; };
     auto inverted_among = [&](const Points& P, const std::vector<int>& tets) {
       int count = 0;
       const int n = static_cast<int>(tets.size());
 #pragma omp parallel for schedule(static) reduction(+ : count) if (n > 4096)
-      for (int i = 0; i < n; ++i) count += edge_matrix(P, domain.T.row(tets[static_cast<size_t>(i)])).determinant() <= 0.0;
+      for (int i = 0; i < n; ++i) count += is_inverted(P, tets[static_cast<size_t>(i)]);
       return count;
     };
     auto inverted_tets = [&](const Points& P) {
       std::vector<char> bad(static_cast<size_t>(nt));
 #pragma omp parallel for schedule(static)
-      for (int t = 0; t < nt; ++t) bad[static_cast<size_t>(t)] = edge_matrix(P, domain.T.row(t)).determinant() <= 0.0;
+      for (int t = 0; t < nt; ++t) bad[static_cast<size_t>(t)] = is_inverted(P, t);
       std::vector<int> list;
       for (int t = 0; t < nt; ++t)
         if (bad[static_cast<size_t>(t)]) list.push_back(t);

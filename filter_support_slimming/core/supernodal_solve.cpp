@@ -184,7 +184,6 @@ struct SupernodalSolver::Plan {
   using Backward = void (*)(const SupernodalFactor&, int, int, double*, double*);
   Forward forward = forward_range_baseline;
   Backward backward = backward_range_baseline;
-  bool avx2 = false;
 };
 
 SupernodalSolver::SupernodalSolver(const SupernodalFactor& f, SupernodalKernels kernels)
@@ -292,7 +291,6 @@ SupernodalSolver::SupernodalSolver(const SupernodalFactor& f, SupernodalKernels 
   if (kernels == SupernodalKernels::Auto && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
     p.forward = forward_range_avx2;
     p.backward = backward_range_avx2;
-    p.avx2 = true;
   }
 #else
   (void)kernels;
@@ -309,7 +307,9 @@ SupernodalSolver& SupernodalSolver::operator=(SupernodalSolver&&) noexcept = def
 
 double SupernodalSolver::half_work(int half) const { return plan_->work[half == 0 ? 0 : 1]; }
 double SupernodalSolver::shared_work() const { return plan_->shared_work; }
-const char* SupernodalSolver::kernels() const { return plan_->avx2 ? "AVX2" : "baseline"; }
+const char* SupernodalSolver::kernels() const {
+  return plan_->forward == forward_range_baseline ? "baseline" : "AVX2";
+}
 
 Eigen::MatrixXd SupernodalSolver::solve(const Eigen::MatrixXd& rhs) const {
   const SupernodalFactor& f = f_;

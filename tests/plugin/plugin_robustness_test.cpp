@@ -82,6 +82,19 @@ OverhangReport measure(const MeshModel& m, const BadInput& c, double plate_toler
   return analyse_overhang(c.inside_out ? flipped(s) : s, o);
 }
 
+// One filter run and what the user sees of it: success, the error message and the whole log.
+struct Outcome {
+  bool ok = false;
+  std::string error, log;
+};
+Outcome run_filter(PluginHarness& h, const QString& filter, MeshDocument& md, const RichParameterList& params) {
+  Outcome o;
+  o.ok = h.apply(filter, md, params);
+  o.error = h.lastError().toStdString();
+  o.log = h.logLines().join("\n").toStdString();
+  return o;
+}
+
 class BadInputPlugin : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(BadInputPlugin, SupportSlimmingAddsASaneLayerOrRefusesLeavingTheDocumentAlone) {
@@ -92,8 +105,7 @@ TEST_P(BadInputPlugin, SupportSlimmingAddsASaneLayerOrRefusesLeavingTheDocumentA
   MeshModel* input = add_case_layer(md, c);
   const LayerSnapshot before(*input);
   const RichParameterList params = slimming_params(h, md, c);
-  const bool ok = h.apply(kSlimming, md, params);
-  const std::string error = h.lastError().toStdString(), log = h.logLines().join("\n").toStdString();
+  const auto [ok, error, log] = run_filter(h, kSlimming, md, params);
   EXPECT_TRUE(LayerSnapshot(*input) == before) << c.name << ": the input layer changed";
 
   const std::string refusal = c.plugin_refusal.empty() ? c.refusal : c.plugin_refusal;
@@ -149,8 +161,7 @@ TEST_P(BadInputPlugin, OverhangAnalysisColoursTheLayerOrRefusesLeavingItAlone) {
   const RichParameterList slimming = slimming_params(h, md, c);
   for (const char* name : {"printDirection", "alphaMax"})
     params.setValue(name, slimming.getParameterByName(name).value());
-  const bool ok = h.apply(kOverhang, md, params);
-  const std::string error = h.lastError().toStdString(), log = h.logLines().join("\n").toStdString();
+  const auto [ok, error, log] = run_filter(h, kOverhang, md, params);
   if (!c.analysis_refusal.empty()) {
     ASSERT_FALSE(ok) << c.name << " was analysed";
     EXPECT_TRUE(mentions(error, c.analysis_refusal)) << c.name << ": " << error;
@@ -185,8 +196,7 @@ TEST_P(BadInputPlugin, PrintOrientationAddsTheBestPoseOrRefusesLeavingTheDocumen
   const Surface seen = vcgx::to_surface(input->cm);
   std::string core_refusal;
   const OrientationResult expected = test::fast_orientation(seen, params.getFloat("alphaMax"), core_refusal);
-  const bool ok = h.apply(kOrientation, md, params);
-  const std::string error = h.lastError().toStdString(), log = h.logLines().join("\n").toStdString();
+  const auto [ok, error, log] = run_filter(h, kOrientation, md, params);
   EXPECT_TRUE(LayerSnapshot(*input) == before) << c.name << ": the input layer changed";
   if (!core_refusal.empty()) {
     ASSERT_FALSE(ok) << c.name << " was accepted";
