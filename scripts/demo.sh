@@ -15,7 +15,7 @@ out="$here/out"; mkdir -p "$out"
 home="$(mktemp -d)"; trap 'rm -rf "$home"' EXIT
 
 run() {  # run SCRIPT OUTPUT LOG
-  HOME="$home" xvfb-run -a "$here/build/prefix/bin/meshlabserver" -i "$here/data/bunny.ply" -o "$2" \
+  HOME="$home" "$here/scripts/with-xvfb.sh" "$here/build/prefix/bin/meshlabserver" -i "$here/data/bunny.ply" -o "$2" \
     -m fq fc vq sa -s "$here/examples/$1" >"$3" 2>&1 || { cat "$3"; exit 1; }
   if grep -q "Problem with filter" "$3"; then cat "$3"; exit 1; fi
 }

@@ -5,7 +5,7 @@
 #      (the orig tarball of Debian's source package) for its plugin headers and vcglib;
 #   3. this checkout, bind-mounted read-only at /src, built for the 2022.02 plugin API;
 #   4. ctest -L meshlab2022: the plugin harness (QPluginLoader, offscreen) on the sample bunny and
-#      the GUI smoke check (meshlab under xvfb-run with the plugin in its extra-plugins folder).
+#      the GUI smoke check (meshlab on a private Xvfb with the plugin in its extra-plugins folder).
 # Every stage prints how long it took. Needs root (debootstrap, chroot, mounts) and
 # data/bunny.ply (scripts/setup.sh fetches it; run here when missing).
 #

@@ -21,7 +21,7 @@
 # oriented -> slimmed, in the oriented frame.
 #
 # Needs: a build with support-slim, slim-eval and the private MeshLab prefix (--build, default
-# build/), and prusa-slicer, xvfb-run, f3d, ImageMagick (scripts/setup.sh installs them).
+# build/), and prusa-slicer, Xvfb, f3d, ImageMagick (scripts/setup.sh installs them).
 # Exits non-zero with a one-line reason on bad input or when a step fails.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -55,9 +55,8 @@ kv() { awk -v k="$2" 'index($0, k "=") == 1 { print substr($0, length(k) + 2); e
 calc() { awk "BEGIN { printf \"%.6g\", $1 }"; }
 # fmt DIGITS VALUE: fixed decimals for the report.
 fmt() { awk -v d="$1" -v v="$2" 'BEGIN { printf "%." d "f", v }'; }
-# xrun CMD...: under a fresh Xvfb. A random first display number keeps parallel runs (ctest -j)
-# from racing for the same one.
-xrun() { xvfb-run -a -n $((100 + RANDOM % 800)) "$@"; }
+# xrun CMD...: on a fresh private Xvfb, whose display number parallel runs (ctest -j) cannot share.
+xrun() { "$repo/scripts/with-xvfb.sh" "$@"; }
 is_number() { [[ "$1" =~ ^[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)$ ]]; }
 
 mesh="" out="" size=60 angle=45 dir="0,0,1" build="$repo/build" name="" quiet="" orient=""
@@ -97,7 +96,7 @@ slim="$build/cli/support-slim"; eval_tool="$build/tools/slim-eval"; server="$bui
 for f in "$slim" "$eval_tool" "$server"; do
   [ -x "$f" ] || die "$f is missing: build the targets support-slim, slim-eval and filter_support_slimming"
 done
-for tool in prusa-slicer xvfb-run f3d; do
+for tool in prusa-slicer Xvfb f3d; do
   command -v "$tool" >/dev/null 2>&1 || die "$tool is not installed (scripts/setup.sh installs it)"
 done
 convert -version 2>/dev/null | grep -q ImageMagick || die "ImageMagick's convert is not installed (apt-get install imagemagick)"

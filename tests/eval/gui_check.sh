@@ -14,7 +14,7 @@
 set -euo pipefail
 if [ -z "${SLIM_GUI_UNDER_XVFB:-}" ]; then  # run ourselves again inside a fresh X server
   export SLIM_GUI_UNDER_XVFB=1
-  exec xvfb-run -a -n $((100 + RANDOM % 800)) -s "-screen 0 1280x1024x24" "$0" "$@"
+  exec "$(dirname "$0")/../../scripts/with-xvfb.sh" "$0" "$@"
 fi
 [ $# -eq 4 ] || { echo "usage: gui_check.sh PREFIX MESH OUT SMOOTHING_INDEX" >&2; exit 2; }
 prefix="$1" mesh="$2" out="$3" index="$4"

@@ -43,7 +43,7 @@ ServerRun run_meshlabserver(const std::string& args) {
   fs::create_directories(home);
   // MeshLab keeps its settings under $HOME/.config/VCG: never the user's own.
   const std::string cmd = "HOME='" + home.string() + "' XDG_CONFIG_HOME='" + home.string() +
-                          "/.config' xvfb-run -a '" SLIM_MESHLAB_PREFIX "/bin/meshlabserver' " + args + " 2>&1";
+                          "/.config' '" SLIM_WITH_XVFB "' '" SLIM_MESHLAB_PREFIX "/bin/meshlabserver' " + args + " 2>&1";
   ServerRun run;
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (!pipe) return run;

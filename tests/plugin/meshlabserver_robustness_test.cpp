@@ -1,4 +1,4 @@
-// Issue 7 through the real meshlabserver (the private prefix, under xvfb-run): a representative
+// Issue 7 through the real meshlabserver (the private prefix, on a private Xvfb): a representative
 // subset of the bad inputs (support/bad_inputs.h, meshlabserver = true) as PLY files and scripts
 // for Support Slimming and Print Orientation,
 // and hand-written scripts that are wrong in the ways a script can be. meshlabserver must never
@@ -172,7 +172,7 @@ TEST(MeshlabserverScripts, MalformedScriptsNeverCrashInOurFilter) {
   struct Fault {
     const char* name;
     QString script;
-    int exit_code;         // 255: exit(-1); 134: SIGABRT (an assert), through xvfb-run
+    int exit_code;         // 255: exit(-1); 134: SIGABRT (an assert), as the shell reports it
     const char* expected;  // in the output
     bool reaches_filter;   // our filter runs (and must fail cleanly)
   };

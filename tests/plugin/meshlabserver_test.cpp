@@ -1,5 +1,5 @@
 // End to end: the real meshlabserver (a copy in the private prefix, so it loads this build's
-// plugin) runs the shipped example scripts on the sample bunny under xvfb-run.
+// plugin) runs the shipped example scripts on the sample bunny on a private Xvfb.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# GUI smoke check for MeshLab 2022.02: the real meshlab, under xvfb-run, with our plugin in the
+# GUI smoke check for MeshLab 2022.02: the real meshlab, on a private Xvfb, with our plugin in the
 # per-user extra-plugins folder $XDG_DATA_HOME/VCG/MeshLab_64bit_fp/MeshLabExtraPlugins/VERSION/,
 # opening the sample bunny. It passes when, SLIM_GUI_SECONDS (default 10) seconds after its first
 # window appears:
@@ -16,7 +16,7 @@
 set -euo pipefail
 
 if [ "${1:-}" = "--inside-xvfb" ]; then
-  # ---- runs under xvfb-run: start meshlab, wait, look, and (with --run-filters) use it -------
+  # ---- runs on the private Xvfb: start meshlab, wait, look, and (with --run-filters) use it -------
   plugin="$2" out="$3" mesh="$4" name="$5" run_filters="${6:-}"
   log="$out/$name.meshlab.log"  # MeshLab 2022.02 echoes its log window to stderr: "LOG: n ..."
   report="$out/$name.report"
@@ -96,7 +96,7 @@ run_meshlab() {
   chmod 700 "$home/runtime"
   cp "$@" "$extra/"
   HOME="$home" XDG_DATA_HOME="$home/share" XDG_CONFIG_HOME="$home/config" XDG_RUNTIME_DIR="$home/runtime" \
-    xvfb-run -a -s "-screen 0 1280x1024x24" "$0" --inside-xvfb "$plugin" "$out" "$mesh" "$name" $run_filters
+    "$(dirname "$0")/../../scripts/with-xvfb.sh" "$0" --inside-xvfb "$plugin" "$out" "$mesh" "$name" $run_filters
   echo "--- $name:"
   cat "$out/$name.report"
 }
