@@ -18,6 +18,7 @@
 
 #include "core/arap.h"
 #include "core/embedding.h"
+#include "core/overhang_boundary.h"
 #include "core/parallel_for.h"
 #include "core/polar.h"
 #include "core/proxy_rotation.h"
@@ -33,11 +34,12 @@
 //  * Straight-down faces: the tie between equally near rotations is broken towards the horizontal
 //    direction from the part's vertical axis to the tet, so the two arms of a T or the rim of a
 //    mushroom cap all bend up and outwards together (paper Fig. 8 is what happens otherwise).
+//    The coherent method breaks it towards the overhang's nearest edge instead (below).
 //  * Deviation budget: each domain vertex's displacement from rest is projected onto the budget
 //    ball after every global step (the overshooting part of the step is rolled back). Surface
 //    vertices are convex combinations of domain vertices, so the surface cannot overshoot either.
-//  * Inversion guard: a step that would invert a tet is cut back to the largest fraction that
-//    keeps every tet positive, and the run stops there.
+//  * Inversion guard (the paper's method): a step that would invert a tet is cut back to the
+//    largest fraction that keeps every tet positive, and the run stops there.
 //  * Output: the best iterate by estimated support, the shadow volume (overhang.h), among those
 //    with no more risky area than the input: bending a T's arms or a mushroom's rim can shrink
 //    the risky area while the overhangs left move higher and need more support. When no iterate
@@ -51,7 +53,14 @@
 //  * rotation smoothing: each risky tet's extra rotation is blended with those of its
 //    face-neighbouring risky tets (area-weighted quaternion average), so neighbours turn together;
 //  * propagation: safe tets next to risky ones take a share of their neighbours' extra rotation,
-//    so a region turns as a body rather than as a skin.
+//    so a region turns as a body rather than as a skin;
+//  * edge tie-break: a straight-down face turns towards the nearest edge of the input's overhang
+//    region (overhang_boundary.h), so a flat overhang grows a bevel or keel along its edges, which
+//    a small budget can reach, instead of tilting as a whole about the part's axis, which it
+//    cannot;
+//  * local inversion guard: the vertices of the tets a step would invert are rolled back to
+//    where they were (the set grows until nothing inverts) and the run goes on, instead of the
+//    whole step being cut back and the run stopped where the first tet would have inverted.
 
 namespace slim {
 namespace {
@@ -77,6 +86,9 @@ struct CoherentSettings {
 };
 
 constexpr double kFeatureWeight = 50.0;  // rigid-feature tets dominate the global step
+// The coherent inversion guard's rounds of rolling vertices back before it gives up and cuts the
+// whole step instead (on the test shapes it needs at most 9).
+constexpr int kMaxRollBackRounds = 64;
 
 void validate(const Surface& input, const SlimmingOptions& o) {
   if (input.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: Support Slimming needs a triangle mesh");
@@ -320,15 +332,27 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
       pieces[static_cast<size_t>(t)].emplace_back(f, emb.tet_face_areas(p));
     }
 
-  // Tie-break direction per tet: horizontal, from the part's vertical axis out to the tet.
+  // Tie-break direction per tet, for straight-down faces: horizontal, from the part's vertical
+  // axis out to the tet. Coherent: towards the nearest edge of the overhang region, for the tets
+  // that hold a risky face within 1 degree of straight down (only such faces can tie).
   const Eigen::Vector3d centre = input.V.colwise().mean().transpose();
-  std::vector<Eigen::Vector3d> outward(static_cast<size_t>(nt));
-  for (int t = 0; t < nt; ++t) {
+  std::vector<Eigen::Vector3d> tie_direction(static_cast<size_t>(nt));
+  const std::unique_ptr<const OverhangBoundary> boundary =
+      coherent ? std::make_unique<const OverhangBoundary>(input, r.before.risky) : nullptr;
+  const double nearly_down = -std::cos(M_PI / 180.0);
+  parallel_for(nt, [&](int t) {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int k = 0; k < 4; ++k) c += domain.V.row(domain.T(t, k)).transpose() / 4.0;
     const Eigen::Vector3d h = (c - centre) - (c - centre).dot(d) * d;
-    outward[static_cast<size_t>(t)] = h.norm() > 1e-9 * diag ? h.normalized() : Eigen::Vector3d::UnitX();
-  }
+    tie_direction[static_cast<size_t>(t)] = h.norm() > 1e-9 * diag ? h.normalized() : Eigen::Vector3d::UnitX();
+    if (!boundary) return;
+    bool flat = false;
+    for (const auto& [face, area] : pieces[static_cast<size_t>(t)])
+      flat = flat || (r.before.risky[static_cast<size_t>(face)] && n0.row(face).dot(d.transpose()) <= nearly_down);
+    if (!flat) return;
+    const Eigen::Vector3d toward = boundary->toward_nearest(c, d);
+    if (toward.squaredNorm() > 0.0) tie_direction[static_cast<size_t>(t)] = toward;
+  });
 
   // Rigid features (§IV-B): the tets holding a feature's faces share one transformation.
   int feature_count = 0;
@@ -417,7 +441,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
         areas(static_cast<Eigen::Index>(i)) = pc[i].second;
       }
       MinRotationOptions mo;
-      mo.tie_break = outward[ts];
+      mo.tie_break = tie_direction[ts];
       const ProxyRotation pr = proxy_rotation(normals, areas, d, tau_solve, mo, po);
       ae_area[ts] = pr.approximation_error * areas.sum();
       if (pr.undefined || !pr.solution.feasible) return;
@@ -536,8 +560,12 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
         disp = (surface_new - input.V).rowwise().norm();
       }
     }
-    // Inversion guard: a step that would turn a tet inside out is cut back to the largest fraction
-    // that keeps every tet positive (bisection), and the run stops there. The bisection probes
+    // Inversion guard. Coherent: the vertices of the tets that would turn inside out go back to
+    // where they were, and so on for the tets that this in turn inverts, until none does (all of
+    // them back is the previous, valid shape); the run goes on. A rigid feature's vertex is never
+    // rolled back alone: the paper's guard then applies. The paper's guard: the step is cut back
+    // to the largest fraction that keeps every tet positive (bisection), and the run stops
+    // there. The bisection probes
     // only the tets that invert at the full step (a tet's volume is a cubic in the fraction, so
     // another could in principle dip in between): the fraction found is checked on every tet, and
     // should one be inverted there, the bisection is redone over all of them.
@@ -558,8 +586,31 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
         if (bad[static_cast<size_t>(t)]) list.push_back(t);
       return list;
     };
+    int held_back = 0;
+    auto roll_back_inverting = [&](std::vector<int> inverting) {
+      Points trial = Vnew;
+      std::vector<char> back(static_cast<size_t>(V.rows()), 0);
+      for (int round = 0; round < kMaxRollBackRounds && !inverting.empty(); ++round) {
+        for (int t : inverting)
+          for (int k = 0; k < 4; ++k) {
+            const int v = domain.T(t, k);
+            if (feature_vertex[static_cast<size_t>(v)]) return false;
+            trial.row(v) = V.row(v);
+            back[static_cast<size_t>(v)] = 1;
+          }
+        inverting = inverted_tets(trial);
+      }
+      if (!inverting.empty()) return false;
+      Vnew = std::move(trial);
+      held_back = static_cast<int>(std::count(back.begin(), back.end(), 1));
+      return true;
+    };
     bool inversion_stop = false;
-    if (std::vector<int> probe = inverted_tets(Vnew); !probe.empty()) {
+    if (std::vector<int> probe = inverted_tets(Vnew); !probe.empty() && coherent && roll_back_inverting(probe)) {
+      guarded = true;
+      embedded_positions(emb, Vnew, surface_new);
+      disp = (surface_new - input.V).rowwise().norm();
+    } else if (!probe.empty()) {
       const Points step = Vnew - V;
       auto largest_fraction = [&](const std::vector<int>& tets) {
         double lo = 0.0, hi = 1.0;
@@ -603,6 +654,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     }
     // Zero unless the guard cut a step whose start was already inverted.
     st.inverted_tets = inversion_stop ? static_cast<int>(inverted_tets(Vnew).size()) : 0;
+    st.held_back_vertices = held_back;
     st.approximation_error = piece_area > 0.0 ? ae / piece_area : 0.0;
     st.max_displacement = disp.maxCoeff();
     st.mean_displacement = disp.mean();

@@ -93,6 +93,9 @@ struct IterationStats {
   double max_displacement = 0.0;   // mm, over surface vertices
   double mean_displacement = 0.0;  // mm
   int inverted_tets = 0;
+  // Coherent: domain vertices the inversion guard put back where they were in this iteration,
+  // because the step would have turned a tet around them inside out.
+  int held_back_vertices = 0;
   int risky_tets = 0;
 };
 

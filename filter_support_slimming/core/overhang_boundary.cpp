@@ -1,0 +1,155 @@
+#include "core/overhang_boundary.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <tuple>
+
+namespace slim {
+namespace {
+
+// The closest point to p on the segment [a, b] (a point when a == b).
+Eigen::Vector3d closest_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  if (!(length2 > 0.0)) return a;
+  return a + std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) * ab;
+}
+
+}  // namespace
+
+OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& risky) {
+  if (risky.size() != static_cast<size_t>(s.F.rows()))
+    throw std::invalid_argument("OverhangBoundary: one risky flag per face is needed");
+  // Every face's edges as (lower vertex, higher vertex, risky); an edge bounds the region when
+  // exactly one risky face uses it.
+  std::vector<std::tuple<int, int, bool>> edges;
+  edges.reserve(static_cast<size_t>(3 * s.F.rows()));
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int u = s.F(f, k), v = s.F(f, (k + 1) % 3);
+      edges.emplace_back(std::min(u, v), std::max(u, v), risky[static_cast<size_t>(f)]);
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::pair<int, int>> boundary;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    int risky_uses = 0;
+    for (; j < edges.size() && std::get<0>(edges[j]) == std::get<0>(edges[i]) && std::get<1>(edges[j]) == std::get<1>(edges[i]); ++j)
+      risky_uses += std::get<2>(edges[j]);
+    if (risky_uses == 1) boundary.emplace_back(std::get<0>(edges[i]), std::get<1>(edges[i]));
+    i = j;
+  }
+  a_.resize(static_cast<Eigen::Index>(boundary.size()), 3);
+  b_.resize(static_cast<Eigen::Index>(boundary.size()), 3);
+  for (size_t i = 0; i < boundary.size(); ++i) {
+    a_.row(static_cast<Eigen::Index>(i)) = s.V.row(boundary[i].first);
+    b_.row(static_cast<Eigen::Index>(i)) = s.V.row(boundary[i].second);
+  }
+  if (boundary.empty()) return;
+
+  // The grid: about two cells per segment, each segment listed in the cells its bounding box
+  // overlaps. Should long segments make that list too long, one cell holds them all (a linear
+  // scan: still exact, only slower).
+  const Eigen::Index n = a_.rows();
+  const Eigen::RowVector3d lo = a_.colwise().minCoeff().cwiseMin(b_.colwise().minCoeff());
+  const Eigen::RowVector3d hi = a_.colwise().maxCoeff().cwiseMax(b_.colwise().maxCoeff());
+  const double extent = (hi - lo).maxCoeff();
+  const int per_side = std::clamp(static_cast<int>(std::cbrt(2.0 * static_cast<double>(n))), 1, 128);
+  origin_ = lo.transpose();
+  cell_ = extent > 0.0 ? extent / per_side : 1.0;
+  for (int k = 0; k < 3; ++k) dims_(k) = std::clamp(static_cast<int>(std::floor((hi(k) - lo(k)) / cell_)) + 1, 1, per_side);
+  auto cell_range = [&](Eigen::Index i, Eigen::Vector3i& from, Eigen::Vector3i& to) {
+    for (int k = 0; k < 3; ++k) {
+      const double smin = std::min(a_(i, k), b_(i, k)) - origin_(k), smax = std::max(a_(i, k), b_(i, k)) - origin_(k);
+      from(k) = std::clamp(static_cast<int>(std::floor(smin / cell_)), 0, dims_(k) - 1);
+      to(k) = std::clamp(static_cast<int>(std::floor(smax / cell_)), 0, dims_(k) - 1);
+    }
+  };
+  double listed = 0.0;
+  Eigen::Vector3i from, to;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    cell_range(i, from, to);
+    listed += static_cast<double>(to(0) - from(0) + 1) * (to(1) - from(1) + 1) * (to(2) - from(2) + 1);
+  }
+  if (listed > 32.0 * static_cast<double>(n) + 1e6) {
+    dims_.setOnes();
+    cell_ = std::max(extent, 1.0) * 2.0;
+  }
+  const size_t cells = static_cast<size_t>(dims_(0)) * static_cast<size_t>(dims_(1)) * static_cast<size_t>(dims_(2));
+  auto index = [&](int x, int y, int z) { return (static_cast<size_t>(z) * static_cast<size_t>(dims_(1)) + static_cast<size_t>(y)) * static_cast<size_t>(dims_(0)) + static_cast<size_t>(x); };
+  cell_start_.assign(cells + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      cell_range(i, from, to);
+      for (int z = from(2); z <= to(2); ++z)
+        for (int y = from(1); y <= to(1); ++y)
+          for (int x = from(0); x <= to(0); ++x) {
+            const size_t c = index(x, y, z);
+            if (pass == 0) ++cell_start_[c + 1];
+            else cell_segments_[static_cast<size_t>(fill[c]++)] = static_cast<int>(i);
+          }
+    }
+    if (pass == 0) {
+      for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+      cell_segments_.resize(static_cast<size_t>(cell_start_.back()));
+    }
+  }
+}
+
+double OverhangBoundary::nearest(const Eigen::Vector3d& p, Eigen::Vector3d& closest) const {
+  double best = HUGE_VAL;
+  int best_segment = -1;
+  if (a_.rows() == 0) return best;
+  Eigen::Vector3i centre;
+  for (int k = 0; k < 3; ++k)
+    centre(k) = std::clamp(static_cast<int>(std::floor((p(k) - origin_(k)) / cell_)), 0, dims_(k) - 1);
+  const int max_shell = dims_.maxCoeff();
+  for (int shell = 0; shell <= max_shell; ++shell) {
+    Eigen::Vector3i from, to;
+    for (int k = 0; k < 3; ++k) {
+      from(k) = std::max(centre(k) - shell, 0);
+      to(k) = std::min(centre(k) + shell, dims_(k) - 1);
+    }
+    for (int z = from(2); z <= to(2); ++z)
+      for (int y = from(1); y <= to(1); ++y)
+        for (int x = from(0); x <= to(0); ++x) {
+          const int ring = std::max({std::abs(x - centre(0)), std::abs(y - centre(1)), std::abs(z - centre(2))});
+          if (ring != shell) continue;  // visited in an earlier shell
+          const size_t c = (static_cast<size_t>(z) * static_cast<size_t>(dims_(1)) + static_cast<size_t>(y)) *
+                               static_cast<size_t>(dims_(0)) + static_cast<size_t>(x);
+          for (int s = cell_start_[c]; s < cell_start_[c + 1]; ++s) {
+            const int i = cell_segments_[static_cast<size_t>(s)];
+            const Eigen::Vector3d q = closest_on_segment(p, a_.row(i).transpose(), b_.row(i).transpose());
+            const double dist = (q - p).norm();
+            if (dist < best || (dist == best && i < best_segment)) {
+              best = dist;
+              best_segment = i;
+              closest = q;
+            }
+          }
+        }
+    // Every segment not seen yet lies in a cell outside the visited block, so at least as far as
+    // the nearest of the block's faces that have cells beyond them.
+    double unseen = HUGE_VAL;
+    for (int k = 0; k < 3; ++k) {
+      if (from(k) > 0) unseen = std::min(unseen, std::max(0.0, p(k) - (origin_(k) + from(k) * cell_)));
+      if (to(k) < dims_(k) - 1) unseen = std::min(unseen, std::max(0.0, origin_(k) + (to(k) + 1) * cell_ - p(k)));
+    }
+    if (best < unseen) break;
+  }
+  return best;
+}
+
+Eigen::Vector3d OverhangBoundary::toward_nearest(const Eigen::Vector3d& p, const Eigen::Vector3d& d) const {
+  Eigen::Vector3d q;
+  const double dist = nearest(p, q);
+  if (!std::isfinite(dist)) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d h = (q - p) - (q - p).dot(d) * d;
+  if (!(h.norm() > 1e-12 * std::max(dist, 1e-300))) return Eigen::Vector3d::Zero();
+  return h.normalized();
+}
+
+}  // namespace slim

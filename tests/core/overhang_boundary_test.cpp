@@ -1,0 +1,115 @@
+// The overhang region's boundary and the direction to its nearest edge: known answers on the T,
+// and the grid search against a scan of every segment.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/overhang.h"
+#include "core/overhang_boundary.h"
+#include "support/shapes.h"
+
+using namespace slim;
+
+namespace {
+
+const Eigen::Vector3d kUp = Eigen::Vector3d::UnitZ();
+
+OverhangBoundary t_boundary(int refinement) {
+  const Surface t = test::refined(test::t_shape(), refinement);
+  return OverhangBoundary(t, analyse_overhang(t).risky);
+}
+
+double brute_force_nearest(const OverhangBoundary& b, const Eigen::Vector3d& p) {
+  double best = HUGE_VAL;
+  for (Eigen::Index i = 0; i < b.segment_count(); ++i) {
+    const Eigen::Vector3d a = b.segment_start(i), ab = b.segment_end(i) - a;
+    const double u = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    best = std::min(best, (a + u * ab - p).norm());
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST(OverhangBoundary, TheTsBoundaryIsThePerimeterOfItsArmUndersides) {
+  // Each arm's underside is a 20 x 10 rectangle at z = 20: perimeter 60, whatever the tessellation.
+  for (int refinement : {0, 2, 4}) {
+    const OverhangBoundary b = t_boundary(refinement);
+    double length = 0.0;
+    for (Eigen::Index i = 0; i < b.segment_count(); ++i) {
+      length += (b.segment_end(i) - b.segment_start(i)).norm();
+      EXPECT_NEAR(b.segment_start(i).z(), 20.0, 1e-12);
+      EXPECT_NEAR(b.segment_end(i).z(), 20.0, 1e-12);
+    }
+    EXPECT_NEAR(length, 120.0, 1e-9) << "refinement " << refinement;
+  }
+}
+
+TEST(OverhangBoundary, FlatOverhangsTurnTowardsTheirNearestEdge) {
+  const OverhangBoundary b = t_boundary(3);
+  struct Probe {
+    Eigen::Vector3d point, expected;
+  };
+  const Probe probes[] = {
+      {{15, 3, 20.5}, {0, 1, 0}},    // near the right arm's +y side
+      {{15, -3.5, 20.5}, {0, -1, 0}},  // near its -y side
+      {{23, 0.5, 20.5}, {1, 0, 0}},  // near its tip
+      {{6, 0.5, 20.5}, {-1, 0, 0}},  // near the stem
+      {{-22, 1, 21}, {-1, 0, 0}},    // near the left arm's tip
+  };
+  for (const Probe& p : probes)
+    EXPECT_LT((b.toward_nearest(p.point, kUp) - p.expected).norm(), 1e-12) << p.point.transpose();
+  // The direction is horizontal for any print direction: only its part across d counts.
+  const Eigen::Vector3d tilted = Eigen::Vector3d(0.3, 0.1, 1).normalized();
+  const Eigen::Vector3d w = b.toward_nearest({15, 3, 20.5}, tilted);
+  EXPECT_NEAR(w.norm(), 1.0, 1e-12);
+  EXPECT_NEAR(w.dot(tilted), 0.0, 1e-12);
+}
+
+TEST(OverhangBoundary, StraightBelowAnEdgeThereIsNoHorizontalDirection) {
+  const OverhangBoundary b = t_boundary(0);
+  Eigen::Vector3d closest;
+  EXPECT_NEAR(b.nearest({15, 5, 12}, closest), 8.0, 1e-12);  // right under the +y edge
+  EXPECT_EQ(b.toward_nearest({15, 5, 12}, kUp), Eigen::Vector3d::Zero());
+}
+
+TEST(OverhangBoundary, GridSearchFindsWhatAScanOfEverySegmentFinds) {
+  // A bumpy sphere with a random overhang region (many short segments), and the T (long ones),
+  // queried inside and far outside their boxes.
+  std::mt19937 gen(7);
+  Surface sphere = test::icosphere(4);
+  std::uniform_real_distribution<double> bump(-0.3, 0.3), coin(0.0, 1.0), far(-60.0, 60.0);
+  for (Eigen::Index v = 0; v < sphere.V.rows(); ++v) sphere.V.row(v) *= 1.0 + 0.05 * bump(gen);
+  std::vector<bool> random_region(static_cast<size_t>(sphere.F.rows()));
+  for (size_t f = 0; f < random_region.size(); ++f) random_region[f] = coin(gen) < 0.3;
+  const Surface t = test::t_shape();
+  const OverhangBoundary cases[] = {OverhangBoundary(sphere, random_region), OverhangBoundary(t, analyse_overhang(t).risky)};
+  for (const OverhangBoundary& b : cases) {
+    ASSERT_GT(b.segment_count(), 0);
+    for (int q = 0; q < 2000; ++q) {
+      const double scale = q < 1000 ? 0.4 : 1.0;  // half near the boundary, half anywhere
+      const Eigen::Vector3d p(scale * far(gen), scale * far(gen), 10 + scale * far(gen));
+      Eigen::Vector3d closest;
+      const double found = b.nearest(p, closest);
+      EXPECT_EQ(found, brute_force_nearest(b, p)) << p.transpose();
+      EXPECT_NEAR((closest - p).norm(), found, 1e-12);
+    }
+  }
+}
+
+TEST(OverhangBoundary, NoOverhangMeansNoBoundaryAndNoDirection) {
+  const Surface cube = test::box({0, 0, 0}, {10, 10, 10});
+  const OverhangBoundary b(cube, analyse_overhang(cube).risky);
+  EXPECT_EQ(b.segment_count(), 0);
+  Eigen::Vector3d closest;
+  EXPECT_EQ(b.nearest({1, 2, 3}, closest), HUGE_VAL);
+  EXPECT_EQ(b.toward_nearest({1, 2, 3}, kUp), Eigen::Vector3d::Zero());
+  // Every face risky: a closed region has no edge either.
+  EXPECT_EQ(OverhangBoundary(cube, std::vector<bool>(static_cast<size_t>(cube.F.rows()), true)).segment_count(), 0);
+}
+
+TEST(OverhangBoundary, RefusesFlagsThatDoNotMatchTheFaces) {
+  const Surface cube = test::box({0, 0, 0}, {10, 10, 10});
+  EXPECT_THROW(OverhangBoundary(cube, std::vector<bool>(3, true)), std::invalid_argument);
+}
