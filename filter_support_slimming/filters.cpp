@@ -271,13 +271,15 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
                         "non-manifold meshes). TetGen: a constrained tetrahedralization of the surface; needs a "
                         "closed, clean, non-self-intersecting mesh."));
   par.addParam(RichEnum("method", 0, QStringList() << "Coherent" << "Paper", "Method",
-                        "Coherent: the default, with coherent rotations and a stiffer response. Paper: the "
-                        "published method as written, for comparison."));
+                        "Coherent: the default. Neighbouring rotations agree, risky regions turn as a body, and "
+                        "flat overhangs turn towards their nearest edge. Paper: the published method as written, "
+                        "for comparison."));
   par.addParam(RichInt("maxIterations", defaults.max_iterations, "Max iterations",
                        "The largest number of local/global iterations. 0 only embeds the mesh and writes it back."));
   par.addParam(RichFloat("maxDeviation", float(defaults.max_deviation_pct), "Deviation budget (%)",
                          "The largest distance any vertex may move, as a percentage of the bounding box "
-                         "diagonal. The iteration that would exceed it is undone and the run stops."));
+                         "diagonal. The part of a step that would take a vertex further is rolled back, so no vertex "
+                         "ever moves further."));
   par.addParam(RichInt("maxK", defaults.max_k, "Max proxies per tetrahedron",
                        "When no single rotation can make every face in a tetrahedron self-supporting, its faces "
                        "are clustered into at most this many proxy normals (area-weighted K-means)."));

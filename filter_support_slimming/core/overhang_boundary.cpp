@@ -17,6 +17,14 @@ Eigen::Vector3d closest_on_segment(const Eigen::Vector3d& p, const Eigen::Vector
   return a + std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) * ab;
 }
 
+// The cell holding offset x (in cells) along an axis of `size` cells, clamped to the grid; NaN
+// (from an infinite extent) goes to cell 0, and nothing is cast out of int's range.
+int clamped_cell(double x, int size) {
+  if (!(x >= 0.0)) return 0;
+  if (x >= static_cast<double>(size - 1)) return size - 1;
+  return static_cast<int>(x);
+}
+
 }  // namespace
 
 OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& risky) {
@@ -58,13 +66,13 @@ OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& ri
   const double extent = (hi - lo).maxCoeff();
   const int per_side = std::clamp(static_cast<int>(std::cbrt(2.0 * static_cast<double>(n))), 1, 128);
   origin_ = lo.transpose();
-  cell_ = extent > 0.0 ? extent / per_side : 1.0;
-  for (int k = 0; k < 3; ++k) dims_(k) = std::clamp(static_cast<int>(std::floor((hi(k) - lo(k)) / cell_)) + 1, 1, per_side);
+  cell_ = extent > 0.0 && std::isfinite(extent) ? extent / per_side : 1.0;
+  for (int k = 0; k < 3; ++k) dims_(k) = clamped_cell((hi(k) - lo(k)) / cell_, per_side) + 1;
   auto cell_range = [&](Eigen::Index i, Eigen::Vector3i& from, Eigen::Vector3i& to) {
     for (int k = 0; k < 3; ++k) {
       const double smin = std::min(a_(i, k), b_(i, k)) - origin_(k), smax = std::max(a_(i, k), b_(i, k)) - origin_(k);
-      from(k) = std::clamp(static_cast<int>(std::floor(smin / cell_)), 0, dims_(k) - 1);
-      to(k) = std::clamp(static_cast<int>(std::floor(smax / cell_)), 0, dims_(k) - 1);
+      from(k) = clamped_cell(smin / cell_, dims_(k));
+      to(k) = clamped_cell(smax / cell_, dims_(k));
     }
   };
   double listed = 0.0;
@@ -73,10 +81,7 @@ OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& ri
     cell_range(i, from, to);
     listed += static_cast<double>(to(0) - from(0) + 1) * (to(1) - from(1) + 1) * (to(2) - from(2) + 1);
   }
-  if (listed > 32.0 * static_cast<double>(n) + 1e6) {
-    dims_.setOnes();
-    cell_ = std::max(extent, 1.0) * 2.0;
-  }
+  if (listed > 32.0 * static_cast<double>(n) + 1e6) dims_.setOnes();
   const size_t cells = static_cast<size_t>(dims_(0)) * static_cast<size_t>(dims_(1)) * static_cast<size_t>(dims_(2));
   auto index = [&](int x, int y, int z) { return (static_cast<size_t>(z) * static_cast<size_t>(dims_(1)) + static_cast<size_t>(y)) * static_cast<size_t>(dims_(0)) + static_cast<size_t>(x); };
   cell_start_.assign(cells + 1, 0);
@@ -105,7 +110,7 @@ double OverhangBoundary::nearest(const Eigen::Vector3d& p, Eigen::Vector3d& clos
   if (a_.rows() == 0) return best;
   Eigen::Vector3i centre;
   for (int k = 0; k < 3; ++k)
-    centre(k) = std::clamp(static_cast<int>(std::floor((p(k) - origin_(k)) / cell_)), 0, dims_(k) - 1);
+    centre(k) = clamped_cell((p(k) - origin_(k)) / cell_, dims_(k));
   const int max_shell = dims_.maxCoeff();
   for (int shell = 0; shell <= max_shell; ++shell) {
     Eigen::Vector3i from, to;

@@ -113,3 +113,19 @@ TEST(OverhangBoundary, RefusesFlagsThatDoNotMatchTheFaces) {
   const Surface cube = test::box({0, 0, 0}, {10, 10, 10});
   EXPECT_THROW(OverhangBoundary(cube, std::vector<bool>(3, true)), std::invalid_argument);
 }
+
+TEST(OverhangBoundary, ExtremeCoordinatesStayDefined) {
+  // The robustness catalogue's scales (1e-3 and 1e6) keep their exact answer. Far beyond them,
+  // squared distances under- or overflow and a T so large that its extent overflows a double
+  // leaves the grid unit cells: the answers are then only defined, never undefined behaviour (the
+  // sanitizer stage runs this too).
+  const std::vector<bool> arms = analyse_overhang(test::t_shape()).risky;  // normals would under/overflow
+  for (double scale : {1e-3, 1e6, 1e-200, 1e200, 5e306}) {
+    const Surface t = test::transformed(test::t_shape(), scale * Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
+    const OverhangBoundary b(t, arms);
+    EXPECT_GT(b.segment_count(), 0) << scale;
+    const Eigen::Vector3d w = b.toward_nearest(scale * Eigen::Vector3d(15, 3, 20.5), kUp);
+    EXPECT_TRUE(w.allFinite()) << scale;
+    if (scale == 1e-3 || scale == 1e6) EXPECT_LT((w - Eigen::Vector3d(0, 1, 0)).norm(), 1e-9) << scale;
+  }
+}
