@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   }
   const Surface bunny = test::load_mesh(test::sample_bunny_path());
   std::printf("median of %d runs of up to %d iterations, no budget, no stall stop; times in ms, per iteration\n"
-              "actually run (a run stops early where a tet would invert)\n", runs, iterations);
+              "actually run (the coherent inversion guard holds vertices back and goes on)\n", runs, iterations);
   std::printf("%10s %8s %8s %4s | %7s %7s %8s | %8s %8s %9s | %7s %7s %6s | %8s\n", "resolution", "dom.V", "dom.T", "its",
               "domain", "embed", "factor", "local/it", "glob/it", "iteration", "backsub", "ratio", "50 it", "total");
   for (int resolution : {13, 32, 60}) {

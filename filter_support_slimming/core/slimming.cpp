@@ -337,6 +337,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
   // that hold a risky face within 1 degree of straight down (only such faces can tie).
   const Eigen::Vector3d centre = input.V.colwise().mean().transpose();
   std::vector<Eigen::Vector3d> tie_direction(static_cast<size_t>(nt));
+  auto directions_timer = std::make_unique<StageTimer>(times.local);  // the local step's input
   const std::unique_ptr<const OverhangBoundary> boundary =
       coherent ? std::make_unique<const OverhangBoundary>(input, r.before.risky) : nullptr;
   const double nearly_down = -std::cos(M_PI / 180.0);
@@ -353,6 +354,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     const Eigen::Vector3d toward = boundary->toward_nearest(c, d);
     if (toward.squaredNorm() > 0.0) tie_direction[static_cast<size_t>(t)] = toward;
   });
+  directions_timer.reset();
 
   // Rigid features (§IV-B): the tets holding a feature's faces share one transformation.
   int feature_count = 0;
