@@ -17,6 +17,7 @@
 #endif
 
 #include "core/arap.h"
+#include "core/axis_rotation.h"
 #include "core/embedding.h"
 #include "core/overhang_boundary.h"
 #include "core/parallel_for.h"
@@ -54,10 +55,12 @@
 //    face-neighbouring risky tets (area-weighted quaternion average), so neighbours turn together;
 //  * propagation: safe tets next to risky ones take a share of their neighbours' extra rotation,
 //    so a region turns as a body rather than as a skin;
-//  * edge tie-break: a straight-down face turns towards the nearest edge of the input's overhang
-//    region (overhang_boundary.h), so a flat overhang grows a bevel or keel along its edges, which
-//    a small budget can reach, instead of tilting as a whole about the part's axis, which it
-//    cannot;
+//  * edge turns: a tet holding a flat overhang (a risky face nearly straight down) turns about
+//    the horizontal axis that tilts it towards the nearest edge of the input's overhang region
+//    (overhang_boundary.h, axis_rotation.h), as long as that costs little more than its minimal
+//    turn; straight-down faces break their tie that way too. A flat overhang then grows a bevel or
+//    keel along its edges, which a small budget can reach, instead of tilting as a whole about the
+//    part's axis or its outer rim, which it cannot;
 //  * local inversion guard: the vertices of the tets a step would invert are rolled back to
 //    where they were (the set grows until nothing inverts) and the run goes on, instead of the
 //    whole step being cut back and the run stopped where the first tet would have inverted.
@@ -83,6 +86,12 @@ struct CoherentSettings {
   double risky_boost = 10.0;     // weight factor for tets that hold risky faces at the start
   double smoothing = 0.5;        // share of the neighbours' average in a risky tet's extra rotation
   double propagation = 0.5;      // share of the neighbours' extra rotation a safe tet takes
+  // A tet holding a risky face within this angle of straight down holds a flat overhang: it turns
+  // towards the overhang's nearest edge when that costs at most edge_turn_slack_deg more than its
+  // minimal turn. 10 degrees takes in the mushroom's cap (8 degrees); the slack must exceed the
+  // 16 degrees by which turning its inner part towards the stem costs more than turning outwards.
+  double flat_overhang_deg = 10.0;
+  double edge_turn_slack_deg = 20.0;
 };
 
 constexpr double kFeatureWeight = 50.0;  // rigid-feature tets dominate the global step
@@ -333,14 +342,14 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     }
 
   // Tie-break direction per tet, for straight-down faces: horizontal, from the part's vertical
-  // axis out to the tet. Coherent: towards the nearest edge of the overhang region, for the tets
-  // that hold a risky face within 1 degree of straight down (only such faces can tie).
+  // axis out to the tet. Coherent, for the tets that hold a flat overhang: towards the nearest
+  // edge of the overhang region, and the axis of the turn that tilts the tet that way.
   const Eigen::Vector3d centre = input.V.colwise().mean().transpose();
-  std::vector<Eigen::Vector3d> tie_direction(static_cast<size_t>(nt));
+  std::vector<Eigen::Vector3d> tie_direction(static_cast<size_t>(nt)), edge_axis(static_cast<size_t>(nt), Eigen::Vector3d::Zero());
   auto directions_timer = std::make_unique<StageTimer>(times.local);  // the local step's input
   const std::unique_ptr<const OverhangBoundary> boundary =
       coherent ? std::make_unique<const OverhangBoundary>(input, r.before.risky) : nullptr;
-  const double nearly_down = -std::cos(M_PI / 180.0);
+  const double nearly_down = -std::cos(cs.flat_overhang_deg * M_PI / 180.0);
   parallel_for(nt, [&](int t) {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int k = 0; k < 4; ++k) c += domain.V.row(domain.T(t, k)).transpose() / 4.0;
@@ -352,7 +361,9 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
       flat = flat || (r.before.risky[static_cast<size_t>(face)] && n0.row(face).dot(d.transpose()) <= nearly_down);
     if (!flat) return;
     const Eigen::Vector3d toward = boundary->toward_nearest(c, d);
-    if (toward.squaredNorm() > 0.0) tie_direction[static_cast<size_t>(t)] = toward;
+    if (toward.squaredNorm() == 0.0) return;
+    tie_direction[static_cast<size_t>(t)] = toward;
+    edge_axis[static_cast<size_t>(t)] = toward.cross(d);  // turns -d towards `toward`
   });
   directions_timer.reset();
 
@@ -410,6 +421,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
   std::vector<Eigen::Matrix3d> L(static_cast<size_t>(nt), Eigen::Matrix3d::Identity()), extra(static_cast<size_t>(nt));
   std::vector<double> ae_area(static_cast<size_t>(nt)), risky_weight(static_cast<size_t>(nt));
   const double max_step = o.max_step_deg * M_PI / 180.0;
+  const double edge_turn_slack = cs.edge_turn_slack_deg * M_PI / 180.0;
   const double budget = o.max_deviation_pct > 0.0 ? o.max_deviation_pct / 100.0 * diag : HUGE_VAL;
   ProxyOptions po;
   po.max_k = o.max_k;
@@ -446,7 +458,15 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
       mo.tie_break = tie_direction[ts];
       const ProxyRotation pr = proxy_rotation(normals, areas, d, tau_solve, mo, po);
       ae_area[ts] = pr.approximation_error * areas.sum();
-      if (pr.undefined || !pr.solution.feasible) return;
+      const bool minimal_found = !pr.undefined && pr.solution.feasible;
+      if (edge_axis[ts].squaredNorm() > 0.0) {
+        const MinRotation edge = min_rotation_about_axis(normals, d, tau_solve, edge_axis[ts]);
+        if (edge.feasible && (!minimal_found || edge.angle <= pr.solution.angle + edge_turn_slack)) {
+          extra[ts] = Eigen::AngleAxisd(std::min(edge.angle, max_step), edge_axis[ts]).toRotationMatrix();
+          return;
+        }
+      }
+      if (!minimal_found) return;
       const double angle = std::min(pr.solution.angle, max_step);
       extra[ts] = Eigen::AngleAxisd(angle, pr.solution.axis).toRotationMatrix();
     });

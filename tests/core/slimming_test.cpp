@@ -50,35 +50,38 @@ TEST(Slimming, PaperMethodAlsoHelpsAndCoherentHelpsMore) {
   EXPECT_LT(coherent.after.risky_area, paper.after.risky_area);
 }
 
-TEST(Slimming, CoherentCutsAtLeastTwiceWhatThePaperCuts) {
-  // The target of the default method: twice the faithful mode's risky-area reduction at every
-  // budget from 2% to 10% (bench/slimming_curve prints the whole table, with the same meshes).
-  // On the T the paper's method cuts nothing below 3%; the coherent one must still cut.
-  struct Case {
-    const char* name;
-    Surface mesh;
-    std::vector<double> budgets;
-  };
-  const Case cases[] = {{"bunny", bunny(), {2, 3, 5, 10}},
-                        {"T", test::refined(test::t_shape(), 4), {2, 3, 5, 10}},
-                        {"arch", test::refined(test::arch(), 3), {2, 3, 5, 10}}};
-  for (const Case& c : cases)
-    for (double budget : c.budgets) {
-      SCOPED_TRACE(std::string(c.name) + " at " + std::to_string(budget) + "%");
-      SlimmingOptions o;
-      o.max_iterations = 200;
-      o.max_deviation_pct = budget;
-      o.method = SlimmingMethod::Paper;
-      const SlimmingResult paper = slim_supports(c.mesh, o);
-      o.method = SlimmingMethod::Coherent;
-      const SlimmingResult coherent = slim_supports(c.mesh, o);
-      const double paper_cut = paper.before.risky_area - paper.after.risky_area;
-      const double coherent_cut = coherent.before.risky_area - coherent.after.risky_area;
-      EXPECT_GE(paper_cut, 0.0);
-      EXPECT_GT(coherent_cut, 0.0);
-      EXPECT_GE(coherent_cut, 2.0 * paper_cut);
-      for (const IterationStats& st : coherent.history) EXPECT_EQ(st.inverted_tets, 0);
-    }
+// The target of the default method: twice the faithful mode's risky-area reduction at every
+// budget from 2% to 10% (bench/slimming_curve prints the whole table, with the same meshes and
+// iteration limit). On the T the paper's method cuts nothing below 3%, on the mushroom nothing at
+// all; the coherent one must still cut.
+static void expect_twice_the_papers_cut(const Surface& mesh) {
+  for (double budget : {2.0, 3.0, 5.0, 10.0}) {
+    SCOPED_TRACE("budget " + std::to_string(budget) + "%");
+    SlimmingOptions o;
+    o.max_iterations = 200;
+    o.max_deviation_pct = budget;
+    o.method = SlimmingMethod::Paper;
+    const SlimmingResult paper = slim_supports(mesh, o);
+    o.method = SlimmingMethod::Coherent;
+    const SlimmingResult coherent = slim_supports(mesh, o);
+    const double paper_cut = paper.before.risky_area - paper.after.risky_area;
+    const double coherent_cut = coherent.before.risky_area - coherent.after.risky_area;
+    EXPECT_GE(paper_cut, 0.0);
+    EXPECT_GT(coherent_cut, 0.0);
+    EXPECT_GE(coherent_cut, 2.0 * paper_cut);
+    for (const IterationStats& st : coherent.history) EXPECT_EQ(st.inverted_tets, 0);
+  }
+}
+
+TEST(Slimming, CoherentCutsAtLeastTwiceWhatThePaperCutsOnTheBunny) { expect_twice_the_papers_cut(bunny()); }
+TEST(Slimming, CoherentCutsAtLeastTwiceWhatThePaperCutsOnTheT) {
+  expect_twice_the_papers_cut(test::refined(test::t_shape(), 4));
+}
+TEST(Slimming, CoherentCutsAtLeastTwiceWhatThePaperCutsOnTheMushroom) {
+  expect_twice_the_papers_cut(test::refined(test::mushroom(), 2));
+}
+TEST(Slimming, CoherentCutsAtLeastTwiceWhatThePaperCutsOnTheArch) {
+  expect_twice_the_papers_cut(test::refined(test::arch(), 3));
 }
 
 TEST(Slimming, CoherentInversionGuardHoldsVerticesBackAndGoesOn) {
@@ -109,18 +112,20 @@ TEST(Slimming, ArchOpeningIsSlimmedWithALargeBudget) {
 }
 
 TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
-  // At 45 degrees the mushroom's nearly flat cap needs 35-45 degrees of rotation, more than a 5%
-  // budget allows: bending it lifts the overhangs that are left, and PrusaSlicer then lays more
-  // support (README, the judge). The result is the iterate with the least shadow volume, so such
-  // a run hands back the input itself, untouched. Where slimming works the shadow volume falls
-  // clearly: the bunny, the arch, and the T, whose coherent run bevels its arms' edges.
+  // At 45 degrees the flat undersides of the T's arms and the mushroom's cap need 35-45 degrees of
+  // rotation, more than a 5% budget allows for the whole underside: bending them up as a body
+  // lifts the overhangs that are left, and PrusaSlicer then lays more support (README, the judge).
+  // The result is the iterate with the least shadow volume, so such a run (the paper's method at
+  // its default 40 iterations) hands back the input itself, untouched. The coherent method turns
+  // flat overhangs towards their edges instead, and on all four shapes the risky area and the
+  // shadow volume fall clearly.
   struct Case {
     const char* name;
     Surface mesh;
     bool improves;
   };
   const Case cases[] = {{"T", test::refined(test::t_shape(), 3), true},
-                        {"mushroom", test::refined(test::mushroom(), 2), false},
+                        {"mushroom", test::refined(test::mushroom(), 2), true},
                         {"arch", test::refined(test::arch(), 3), true},
                         {"bunny", bunny(), true}};
   for (const Case& c : cases)
@@ -142,6 +147,7 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
       }
       if (c.improves && method == SlimmingMethod::Coherent) {
         EXPECT_LT(r.after.shadow_volume, 0.8 * r.before.shadow_volume);
+        EXPECT_LT(r.after.risky_area, 0.95 * r.before.risky_area);
       }
     }
 }
