@@ -27,26 +27,26 @@ int clamped_cell(double x, int size) {
 
 }  // namespace
 
-OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& risky) {
-  if (risky.size() != static_cast<size_t>(s.F.rows()))
-    throw std::invalid_argument("OverhangBoundary: one risky flag per face is needed");
-  // Every face's edges as (lower vertex, higher vertex, risky); an edge bounds the region when
-  // exactly one risky face uses it.
+OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& region) {
+  if (region.size() != static_cast<size_t>(s.F.rows()))
+    throw std::invalid_argument("OverhangBoundary: one region flag per face is needed");
+  // Every face's edges as (lower vertex, higher vertex, in the region); an edge bounds the region
+  // when exactly one of the faces along it is in the region.
   std::vector<std::tuple<int, int, bool>> edges;
   edges.reserve(static_cast<size_t>(3 * s.F.rows()));
   for (Eigen::Index f = 0; f < s.F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int u = s.F(f, k), v = s.F(f, (k + 1) % 3);
-      edges.emplace_back(std::min(u, v), std::max(u, v), risky[static_cast<size_t>(f)]);
+      edges.emplace_back(std::min(u, v), std::max(u, v), region[static_cast<size_t>(f)]);
     }
   std::sort(edges.begin(), edges.end());
   std::vector<std::pair<int, int>> boundary;
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
-    int risky_uses = 0;
+    int region_uses = 0;
     for (; j < edges.size() && std::get<0>(edges[j]) == std::get<0>(edges[i]) && std::get<1>(edges[j]) == std::get<1>(edges[i]); ++j)
-      risky_uses += std::get<2>(edges[j]);
-    if (risky_uses == 1) boundary.emplace_back(std::get<0>(edges[i]), std::get<1>(edges[i]));
+      region_uses += std::get<2>(edges[j]);
+    if (region_uses == 1) boundary.emplace_back(std::get<0>(edges[i]), std::get<1>(edges[i]));
     i = j;
   }
   a_.resize(static_cast<Eigen::Index>(boundary.size()), 3);

@@ -1,17 +1,19 @@
-// The boundary of the overhang region, and which way a flat overhang should turn.
+// The boundary of a flat overhang region, and which way its faces should turn.
 //
 // A face pointing straight down against the print direction d can be made self-supporting by
-// turning it about any horizontal axis: every way is equally short (min_rotation.h, tie_break).
-// Within a small deviation budget only a strip along the region's boundary can reach the
-// self-supporting slope, as a bevel or a keel along that edge; the middle of a wide flat overhang
-// cannot. So each straight-down face should turn towards its nearest boundary edge: the strips
-// along opposite edges then meet in a ridge, instead of the whole region tilting one way about a
-// far-away pivot (which needs far more displacement than the budget allows).
+// turning it about any horizontal axis: every way is equally short (min_rotation.h, tie_break),
+// and for a face a few degrees off it the other ways cost only a little more. Within a small
+// deviation budget only a strip along the region's boundary can reach the self-supporting slope,
+// as a bevel or a keel along that edge; the middle of a wide flat overhang cannot. So each face
+// of the region should turn towards its nearest boundary edge: the strips along opposite edges
+// then meet in a ridge, instead of the whole region tilting one way about a far-away pivot
+// (which needs far more displacement than the budget allows).
 //
-// In:  a Surface (positions in mm, #F by 3 triangles) and one risky flag per face.
-// Out: the boundary segments: every edge of a risky face that no other risky face shares (an
-//      edge to a safe face, or an open edge), as pairs of end points in mm. Queries return, for a
-//      point, the unit direction perpendicular to d from it to the nearest boundary point.
+// In:  a Surface (positions in mm, #F by 3 triangles) and one flag per face marking the region
+//      (slimming.cpp marks the risky faces within a few degrees of straight down).
+// Out: the boundary segments: every edge of a marked face that no other marked face shares (an
+//      edge to an unmarked face, or an open edge), as pairs of end points in mm. Queries return,
+//      for a point, the unit direction perpendicular to d from it to the nearest boundary point.
 #pragma once
 
 #include <vector>
@@ -24,8 +26,8 @@ namespace slim {
 
 class OverhangBoundary {
  public:
-  // Throws std::invalid_argument when risky does not have one flag per face.
-  OverhangBoundary(const Surface& s, const std::vector<bool>& risky);
+  // Throws std::invalid_argument when region does not have one flag per face.
+  OverhangBoundary(const Surface& s, const std::vector<bool>& region);
 
   Eigen::Index segment_count() const { return a_.rows(); }
   // Segment i's end points (mm), for 0 <= i < segment_count(); in edge order (lower vertex index

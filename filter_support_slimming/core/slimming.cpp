@@ -56,11 +56,13 @@
 //  * propagation: safe tets next to risky ones take a share of their neighbours' extra rotation,
 //    so a region turns as a body rather than as a skin;
 //  * edge turns: a tet holding a flat overhang (a risky face nearly straight down) turns about
-//    the horizontal axis that tilts it towards the nearest edge of the input's overhang region
-//    (overhang_boundary.h, axis_rotation.h), as long as that costs little more than its minimal
-//    turn; straight-down faces break their tie that way too. A flat overhang then grows a bevel or
-//    keel along its edges, which a small budget can reach, instead of tilting as a whole about the
-//    part's axis or its outer rim, which it cannot;
+//    the horizontal axis that tilts it towards the nearest edge of the input's flat overhang
+//    region (overhang_boundary.h, axis_rotation.h), as long as that costs little more than its
+//    minimal turn; straight-down faces break their tie that way too. A flat overhang then grows a
+//    bevel or keel along its edges, which a small budget can reach, instead of tilting as a whole
+//    about the part's axis or its outer rim, which it cannot. The region is the flat faces only,
+//    not all risky ones: the flat crown of an arch turns towards the curved overhang around it
+//    (a pointed arch), not towards the arch's front and back;
 //  * local inversion guard: the vertices of the tets a step would invert are rolled back to
 //    where they were (the set grows until nothing inverts) and the run goes on, instead of the
 //    whole step being cut back and the run stopped where the first tet would have inverted.
@@ -343,13 +345,16 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
 
   // Tie-break direction per tet, for straight-down faces: horizontal, from the part's vertical
   // axis out to the tet. Coherent, for the tets that hold a flat overhang: towards the nearest
-  // edge of the overhang region, and the axis of the turn that tilts the tet that way.
+  // edge of the flat overhang region, and the axis of the turn that tilts the tet that way.
   const Eigen::Vector3d centre = input.V.colwise().mean().transpose();
   std::vector<Eigen::Vector3d> tie_direction(static_cast<size_t>(nt)), edge_axis(static_cast<size_t>(nt), Eigen::Vector3d::Zero());
   auto directions_timer = std::make_unique<StageTimer>(times.local);  // the local step's input
-  const std::unique_ptr<const OverhangBoundary> boundary =
-      coherent ? std::make_unique<const OverhangBoundary>(input, r.before.risky) : nullptr;
   const double nearly_down = -std::cos(cs.flat_overhang_deg * M_PI / 180.0);
+  std::vector<bool> flat_overhang(static_cast<size_t>(input.F.rows()));
+  for (Eigen::Index f = 0; f < input.F.rows(); ++f)
+    flat_overhang[static_cast<size_t>(f)] = r.before.risky[static_cast<size_t>(f)] && n0.row(f).dot(d.transpose()) <= nearly_down;
+  const std::unique_ptr<const OverhangBoundary> boundary =
+      coherent ? std::make_unique<const OverhangBoundary>(input, flat_overhang) : nullptr;
   parallel_for(nt, [&](int t) {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int k = 0; k < 4; ++k) c += domain.V.row(domain.T(t, k)).transpose() / 4.0;
@@ -358,7 +363,7 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     if (!boundary) return;
     bool flat = false;
     for (const auto& [face, area] : pieces[static_cast<size_t>(t)])
-      flat = flat || (r.before.risky[static_cast<size_t>(face)] && n0.row(face).dot(d.transpose()) <= nearly_down);
+      flat = flat || flat_overhang[static_cast<size_t>(face)];
     if (!flat) return;
     const Eigen::Vector3d toward = boundary->toward_nearest(c, d);
     if (toward.squaredNorm() == 0.0) return;

@@ -2,6 +2,7 @@
 // and the grid search against a scan of every segment.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -65,6 +66,22 @@ TEST(OverhangBoundary, FlatOverhangsTurnTowardsTheirNearestEdge) {
   const Eigen::Vector3d w = b.toward_nearest({15, 3, 20.5}, tilted);
   EXPECT_NEAR(w.norm(), 1.0, 1e-12);
   EXPECT_NEAR(w.dot(tilted), 0.0, 1e-12);
+}
+
+TEST(OverhangBoundary, AnArchsFlatCrownTurnsTowardsItsCurvedSidesNotItsFrontAndBack) {
+  // The arch's opening (radius 10 about (0, 8) in x-z, 10 deep in y) in 24 segments: its flat
+  // region, the risky faces within 10 degrees of straight down, is the crown strip |x| < 1.3. Its
+  // faces turn towards the curved overhang at the strip's sides (a pointed arch), where the
+  // whole overhang's nearest edge would be the front or back (a keel across the opening).
+  const Surface arch = test::arch();
+  const OverhangReport r = analyse_overhang(arch);
+  const Points n = face_normals(arch);
+  std::vector<bool> flat(r.risky.size());
+  for (size_t f = 0; f < flat.size(); ++f) flat[f] = r.risky[f] && n(static_cast<Eigen::Index>(f), 2) <= -std::cos(10 * M_PI / 180);
+  ASSERT_EQ(std::count(flat.begin(), flat.end(), true), 4);  // two segments, two triangles each
+  const Eigen::Vector3d crown(0.5, 3.5, 18.3);
+  EXPECT_LT((OverhangBoundary(arch, flat).toward_nearest(crown, kUp) - Eigen::Vector3d(1, 0, 0)).norm(), 1e-12);
+  EXPECT_GT(OverhangBoundary(arch, r.risky).toward_nearest(crown, kUp).y(), 0.99);  // the front's arc
 }
 
 TEST(OverhangBoundary, StraightBelowAnEdgeThereIsNoHorizontalDirection) {
