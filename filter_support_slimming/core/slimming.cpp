@@ -590,12 +590,12 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     // Inversion guard. Coherent: the vertices of the tets that would turn inside out go back to
     // where they were, and so on for the tets that this in turn inverts, until none does (all of
     // them back is the previous, valid shape); the run goes on. A rigid feature's vertex is never
-    // rolled back alone: the paper's guard then applies. The paper's guard: the step is cut back
-    // to the largest fraction that keeps every tet positive (bisection), and the run stops
-    // there. The bisection probes
-    // only the tets that invert at the full step (a tet's volume is a cubic in the fraction, so
-    // another could in principle dip in between): the fraction found is checked on every tet, and
-    // should one be inverted there, the bisection is redone over all of them.
+    // rolled back alone: the paper's guard then applies.
+    // The paper's guard: the step is cut back to the largest fraction that keeps every tet
+    // positive (bisection), and the run stops there. The bisection probes only the tets that
+    // invert at the full step (a tet's volume is a cubic in the fraction, so another could in
+    // principle dip in between): the fraction found is checked on every tet, and should one be
+    // inverted there, the bisection is redone over all of them.
     auto is_inverted = [&](const Points& P, int t) { return edge_matrix(P, domain.T.row(t)).determinant() <= 0.0; };
     auto inverted_among = [&](const Points& P, const std::vector<int>& tets) {
       int count = 0;
