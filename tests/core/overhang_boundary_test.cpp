@@ -143,6 +143,8 @@ TEST(OverhangBoundary, ExtremeCoordinatesStayDefined) {
     EXPECT_GT(b.segment_count(), 0) << scale;
     const Eigen::Vector3d w = b.toward_nearest(scale * Eigen::Vector3d(15, 3, 20.5), kUp);
     EXPECT_TRUE(w.allFinite()) << scale;
-    if (scale == 1e-3 || scale == 1e6) EXPECT_LT((w - Eigen::Vector3d(0, 1, 0)).norm(), 1e-9) << scale;
+    if (scale == 1e-3 || scale == 1e6) {
+      EXPECT_LT((w - Eigen::Vector3d(0, 1, 0)).norm(), 1e-9) << scale;
+    }
   }
 }
