@@ -145,6 +145,8 @@ struct ArapSolver::Impl {
   std::unique_ptr<Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower>> cholmod_simplicial;
 #endif
 
+  // Everything a constructor does: store and check, split, index, factor once, size the workspace.
+  void setup(const TetMesh& mesh, const Eigen::VectorXd* weights, const std::vector<int>& pinned);
   void check_and_store(const TetMesh& mesh, const Eigen::VectorXd* weights);
   void split_vertices(const std::vector<int>& pinned);
   void build_incidence();
@@ -339,25 +341,25 @@ void ArapSolver::Impl::check_L(const std::vector<Eigen::Matrix3d>& L) const {
   if (static_cast<int>(L.size()) != nt) throw std::invalid_argument("ArapSolver: expected one L per tet");
 }
 
+void ArapSolver::Impl::setup(const TetMesh& mesh, const Eigen::VectorXd* weights, const std::vector<int>& pinned) {
+  check_and_store(mesh, weights);
+  split_vertices(pinned);
+  build_incidence();
+  if (!free_vertices.empty()) factor(free_matrix());
+  gradient.assign(static_cast<size_t>(nt), Eigen::Matrix<double, 3, 4>::Zero());  // its pages, now
+}
+
 ArapSolver::ArapSolver(const TetMesh& rest, const std::vector<int>& pinned, const ArapOptions& options)
     : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
-  impl_->check_and_store(rest, nullptr);
-  impl_->split_vertices(pinned);
-  impl_->build_incidence();
-  if (!impl_->free_vertices.empty()) impl_->factor(impl_->free_matrix());
-  impl_->gradient.assign(static_cast<size_t>(impl_->nt), Eigen::Matrix<double, 3, 4>::Zero());  // its pages, now
+  impl_->setup(rest, nullptr, pinned);
 }
 
 ArapSolver::ArapSolver(const TetMesh& rest, const Eigen::VectorXd& weights, const std::vector<int>& pinned,
                        const ArapOptions& options)
     : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
-  impl_->check_and_store(rest, &weights);
-  impl_->split_vertices(pinned);
-  impl_->build_incidence();
-  if (!impl_->free_vertices.empty()) impl_->factor(impl_->free_matrix());
-  impl_->gradient.assign(static_cast<size_t>(impl_->nt), Eigen::Matrix<double, 3, 4>::Zero());  // its pages, now
+  impl_->setup(rest, &weights, pinned);
 }
 
 ArapSolver::~ArapSolver() = default;
@@ -376,8 +378,7 @@ Eigen::MatrixXd ArapSolver::assemble_rhs(const std::vector<Eigen::Matrix3d>& L, 
   // Each tet's four gradient terms once (w_t L_t times the rest corners), read by its corners'
   // rows below: the tets stream in order here, and each row reads 24 bytes per incidence.
   const std::lock_guard<std::mutex> lock(m.workspace_mutex);
-  std::vector<Eigen::Matrix<double, 3, 4>>& gradient = m.gradient;
-  gradient.resize(static_cast<size_t>(m.nt));
+  std::vector<Eigen::Matrix<double, 3, 4>>& gradient = m.gradient;  // sized by setup()
 #pragma omp parallel for schedule(static) if (m.nt >= kParallelRows)
   for (int t = 0; t < m.nt; ++t) {
     const double wt = m.w(t);

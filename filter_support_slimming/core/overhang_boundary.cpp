@@ -83,7 +83,6 @@ OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& re
   }
   if (listed > 32.0 * static_cast<double>(n) + 1e6) dims_.setOnes();
   const size_t cells = static_cast<size_t>(dims_(0)) * static_cast<size_t>(dims_(1)) * static_cast<size_t>(dims_(2));
-  auto index = [&](int x, int y, int z) { return (static_cast<size_t>(z) * static_cast<size_t>(dims_(1)) + static_cast<size_t>(y)) * static_cast<size_t>(dims_(0)) + static_cast<size_t>(x); };
   cell_start_.assign(cells + 1, 0);
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
@@ -92,7 +91,7 @@ OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& re
       for (int z = from(2); z <= to(2); ++z)
         for (int y = from(1); y <= to(1); ++y)
           for (int x = from(0); x <= to(0); ++x) {
-            const size_t c = index(x, y, z);
+            const size_t c = cell_index(x, y, z);
             if (pass == 0) ++cell_start_[c + 1];
             else cell_segments_[static_cast<size_t>(fill[c]++)] = static_cast<int>(i);
           }
@@ -123,8 +122,7 @@ double OverhangBoundary::nearest(const Eigen::Vector3d& p, Eigen::Vector3d& clos
         for (int x = from(0); x <= to(0); ++x) {
           const int ring = std::max({std::abs(x - centre(0)), std::abs(y - centre(1)), std::abs(z - centre(2))});
           if (ring != shell) continue;  // visited in an earlier shell
-          const size_t c = (static_cast<size_t>(z) * static_cast<size_t>(dims_(1)) + static_cast<size_t>(y)) *
-                               static_cast<size_t>(dims_(0)) + static_cast<size_t>(x);
+          const size_t c = cell_index(x, y, z);
           for (int s = cell_start_[c]; s < cell_start_[c + 1]; ++s) {
             const int i = cell_segments_[static_cast<size_t>(s)];
             const Eigen::Vector3d q = closest_on_segment(p, a_.row(i).transpose(), b_.row(i).transpose());

@@ -52,6 +52,10 @@ class OverhangBoundary {
   double cell_ = 1.0;
   Eigen::Vector3i dims_ = Eigen::Vector3i::Ones();
   std::vector<int> cell_start_, cell_segments_;
+  size_t cell_index(int x, int y, int z) const {
+    return (static_cast<size_t>(z) * static_cast<size_t>(dims_(1)) + static_cast<size_t>(y)) * static_cast<size_t>(dims_(0)) +
+           static_cast<size_t>(x);
+  }
 };
 
 }  // namespace slim

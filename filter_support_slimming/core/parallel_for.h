@@ -22,46 +22,44 @@
 
 namespace slim {
 
-class ThreadScope {
+// One OpenMP runtime setting (an int read by Get, written by Set) held for the lifetime of the
+// object, the previous value restored after; `hold` false leaves it alone. Without OpenMP: nothing.
+template <int (*Get)(), void (*Set)(int)>
+class OpenMPSettingScope {
  public:
-  explicit ThreadScope(int threads) {
-#ifdef _OPENMP
-    previous_ = omp_get_max_threads();
-    if (threads > 0) omp_set_num_threads(threads);
-#else
-    (void)threads;
-#endif
+  OpenMPSettingScope(bool hold, int value) : previous_(Get()) {
+    if (hold) Set(value);
   }
-  ~ThreadScope() {
-#ifdef _OPENMP
-    omp_set_num_threads(previous_);
-#endif
-  }
-  ThreadScope(const ThreadScope&) = delete;
-  ThreadScope& operator=(const ThreadScope&) = delete;
+  ~OpenMPSettingScope() { Set(previous_); }
+  OpenMPSettingScope(const OpenMPSettingScope&) = delete;
+  OpenMPSettingScope& operator=(const OpenMPSettingScope&) = delete;
 
  private:
-  int previous_ = 1;
+  int previous_;
 };
 
-class SerialOpenMPScope {
- public:
-  SerialOpenMPScope() {
+namespace omp_setting {
 #ifdef _OPENMP
-    previous_ = omp_get_max_active_levels();
-    omp_set_max_active_levels(0);
+inline int threads() { return omp_get_max_threads(); }
+inline void set_threads(int n) { omp_set_num_threads(n); }
+inline int active_levels() { return omp_get_max_active_levels(); }
+inline void set_active_levels(int n) { omp_set_max_active_levels(n); }
+#else
+inline int threads() { return 1; }
+inline void set_threads(int) {}
+inline int active_levels() { return 1; }
+inline void set_active_levels(int) {}
 #endif
-  }
-  ~SerialOpenMPScope() {
-#ifdef _OPENMP
-    omp_set_max_active_levels(previous_);
-#endif
-  }
-  SerialOpenMPScope(const SerialOpenMPScope&) = delete;
-  SerialOpenMPScope& operator=(const SerialOpenMPScope&) = delete;
+}  // namespace omp_setting
 
- private:
-  int previous_ = 1;
+class ThreadScope : OpenMPSettingScope<omp_setting::threads, omp_setting::set_threads> {
+ public:
+  explicit ThreadScope(int threads) : OpenMPSettingScope(threads > 0, threads) {}
+};
+
+class SerialOpenMPScope : OpenMPSettingScope<omp_setting::active_levels, omp_setting::set_active_levels> {
+ public:
+  SerialOpenMPScope() : OpenMPSettingScope(true, 0) {}
 };
 
 template <class Body>

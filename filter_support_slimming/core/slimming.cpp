@@ -350,11 +350,14 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
   std::vector<Eigen::Vector3d> tie_direction(static_cast<size_t>(nt)), edge_axis(static_cast<size_t>(nt), Eigen::Vector3d::Zero());
   auto directions_timer = std::make_unique<StageTimer>(times.local);  // the local step's input
   const double nearly_down = -std::cos(cs.flat_overhang_deg * M_PI / 180.0);
-  std::vector<bool> flat_overhang(static_cast<size_t>(input.F.rows()));
-  for (Eigen::Index f = 0; f < input.F.rows(); ++f)
-    flat_overhang[static_cast<size_t>(f)] = r.before.risky[static_cast<size_t>(f)] && n0.row(f).dot(d.transpose()) <= nearly_down;
-  const std::unique_ptr<const OverhangBoundary> boundary =
-      coherent ? std::make_unique<const OverhangBoundary>(input, flat_overhang) : nullptr;
+  std::vector<bool> flat_overhang;
+  std::unique_ptr<const OverhangBoundary> boundary;
+  if (coherent) {
+    flat_overhang.resize(static_cast<size_t>(input.F.rows()));
+    for (Eigen::Index f = 0; f < input.F.rows(); ++f)
+      flat_overhang[static_cast<size_t>(f)] = r.before.risky[static_cast<size_t>(f)] && n0.row(f).dot(d.transpose()) <= nearly_down;
+    boundary = std::make_unique<const OverhangBoundary>(input, flat_overhang);
+  }
   parallel_for(nt, [&](int t) {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int k = 0; k < 4; ++k) c += domain.V.row(domain.T(t, k)).transpose() / 4.0;
@@ -481,14 +484,11 @@ SlimmingResult slim_oriented(const Surface& input, const SlimmingOptions& o) {
     parallel_for(nt, [&](int t) {
       const size_t ts = static_cast<size_t>(t);
       const bool risky = risky_weight[ts] > 0.0;
-      if (!coherent || tet_feature[ts] >= 0 || neighbours[ts].empty()) {
-        if (risky) L[ts] = extra[ts] * L[ts];
-        return;
-      }
       std::vector<std::pair<double, Eigen::Quaterniond>> items;
-      for (int u : neighbours[ts])
-        if (risky_weight[static_cast<size_t>(u)] > 0.0 && tet_feature[static_cast<size_t>(u)] < 0)
-          items.emplace_back(risky_weight[static_cast<size_t>(u)], Eigen::Quaterniond(extra[static_cast<size_t>(u)]));
+      if (coherent && tet_feature[ts] < 0)
+        for (int u : neighbours[ts])
+          if (risky_weight[static_cast<size_t>(u)] > 0.0 && tet_feature[static_cast<size_t>(u)] < 0)
+            items.emplace_back(risky_weight[static_cast<size_t>(u)], Eigen::Quaterniond(extra[static_cast<size_t>(u)]));
       if (items.empty()) {
         if (risky) L[ts] = extra[ts] * L[ts];
         return;
