@@ -21,7 +21,13 @@ class CheckedSurface {
   explicit CheckedSurface(const Surface& s) : s_(&s) { check_surface(s); }
   const Surface& get() const { return *s_; }
 
+  // A view of a surface derived from this one without a second check: the same number of
+  // vertices at finite positions (a copy, or the optimizer's iterates), and the same faces or the
+  // same faces with their corners reordered (turned over). The caller vouches for it.
+  CheckedSurface derived(const Surface& s) const { return CheckedSurface(&s); }
+
  private:
+  explicit CheckedSurface(const Surface* s) : s_(s) {}
   const Surface* s_;
 };
 

@@ -23,7 +23,12 @@ Eigen::Vector3d unit_print_direction(const Eigen::Vector3d& d) {
 
 OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options) {
   if (s.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: there is nothing to analyse");
-  check_surface(s);
+  return analyse_overhang(CheckedSurface(s), options);
+}
+
+OverhangReport analyse_overhang(const CheckedSurface& checked, const OverhangOptions& options) {
+  const Surface& s = checked.get();
+  if (s.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: there is nothing to analyse");
   const Eigen::Vector3d d = unit_print_direction(options.print_direction);
   const double tau = self_supporting_tau(options.alpha_max_deg);
 

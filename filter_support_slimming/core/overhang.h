@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "core/checked_surface.h"
 #include "core/surface.h"
 
 namespace slim {
@@ -72,5 +73,7 @@ Eigen::Vector3d unit_print_direction(const Eigen::Vector3d& d);
 // Classifies every face. Throws std::invalid_argument (readable message) for a surface with no
 // faces, bad indices, non-finite coordinates, or bad options.
 OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options = {});
+// The same for a surface already checked (the optimizer measures every iterate this way).
+OverhangReport analyse_overhang(const CheckedSurface& s, const OverhangOptions& options = {});
 
 }  // namespace slim
