@@ -369,6 +369,16 @@ const FilterDefinition* find_filter(int id) {
   return id >= 0 && id < static_cast<int>(filters.size()) ? &filters[static_cast<size_t>(id)] : nullptr;
 }
 
+QString filter_name(int id) {
+  const FilterDefinition* f = find_filter(id);
+  return f ? f->name : QString();
+}
+
+QString filter_info(int id) {
+  const FilterDefinition* f = find_filter(id);
+  return f ? f->info : QString();
+}
+
 // ---- what every filter shares ----------------------------------------------------------------
 
 RichParameterList default_parameters(const FilterDefinition& filter, const MeshModel& m) {
