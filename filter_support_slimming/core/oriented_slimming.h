@@ -16,6 +16,9 @@
 //                the deformation alone, measured in that pose.
 // The build plate tolerance: the one given (>= 0) serves both steps; a negative one lets the
 // search choose its default (1e-3 of the part's size) and the slimming then uses the same.
+// The deviation budget: a percentage is of the bbox diagonal of the part as given, turned into a
+// length (max_deviation_mm), so that the same part gets the same allowance whatever pose the
+// search picks.
 // Errors: those of optimize_orientation and slim_supports.
 #pragma once
 

@@ -34,7 +34,7 @@ std::vector<int> feature_components(const Surface& s, const std::vector<bool>& m
 
 RigidFeatures::RigidFeatures(const Surface& input, const std::vector<bool>& marks, const Embedding& emb,
                              const TetMesh& domain)
-    : tet_feature_(static_cast<size_t>(domain.T.rows()), -1), vertex_(static_cast<size_t>(domain.V.rows()), false) {
+    : tet_feature_(static_cast<size_t>(domain.T.rows()), -1), vertex_(static_cast<size_t>(domain.V.rows()), -1) {
   if (marks.empty()) return;
   int count = 0;
   const std::vector<int> face_feature = feature_components(input, marks, count);
@@ -45,7 +45,10 @@ RigidFeatures::RigidFeatures(const Surface& input, const std::vector<bool>& mark
       feature = face_feature[static_cast<size_t>(emb.tet_faces(p))];
     if (feature < 0) continue;
     tets_[static_cast<size_t>(feature)].push_back(static_cast<int>(t));
-    for (int k = 0; k < 4; ++k) vertex_[static_cast<size_t>(domain.T(t, k))] = true;
+    for (int k = 0; k < 4; ++k) {
+      int& owner = vertex_[static_cast<size_t>(domain.T(t, k))];
+      owner = owner < 0 ? feature : std::min(owner, feature);
+    }
   }
 }
 

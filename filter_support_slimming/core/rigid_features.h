@@ -14,7 +14,9 @@
 //   tet_feature  #DT: the feature of the first marked face a tet holds (its face pieces in order),
 //                -1 for none. Such a tet's L comes from its feature, not from the local step.
 //   tets         per feature, its tets in ascending order (computed once; no per-iteration scan).
-//   vertex       #DV: true for the vertices of feature tets; the guards never move them alone.
+//   vertex_feature  #DV: the feature of each vertex of a feature tet (the lowest one where
+//                features meet), -1 for the others; the guards never move a feature's vertices
+//                alone.
 // fit: for every feature, M_f = the rotation nearest to sum_t w_t V_t^cur (V_t^0)^-1 over its tets
 // (w: the global step's weights), R_f = the minimal rotation of all its constraint pieces' rest
 // normals turned by M_f (on proxies when no exact one exists; the identity when none does),
@@ -39,7 +41,7 @@ class RigidFeatures {
   int count() const { return static_cast<int>(tets_.size()); }
   const std::vector<int>& tet_feature() const { return tet_feature_; }
   const std::vector<int>& tets(int feature) const { return tets_[static_cast<size_t>(feature)]; }
-  const std::vector<bool>& vertex() const { return vertex_; }
+  const std::vector<int>& vertex_feature() const { return vertex_; }
   // tet_feature() >= 0 as flags, for the local step's `skip`.
   std::vector<bool> tet_flags() const;
 
@@ -48,7 +50,7 @@ class RigidFeatures {
  private:
   std::vector<int> tet_feature_;
   std::vector<std::vector<int>> tets_;
-  std::vector<bool> vertex_;
+  std::vector<int> vertex_;
 };
 
 }  // namespace slim

@@ -52,6 +52,11 @@ void require_optimizer_memory(const TetMesh& domain, const SlimmingOptions& o) {
 
 }  // namespace
 
+double deviation_budget(const SlimmingOptions& o, double diag) {
+  if (o.max_deviation_mm > 0.0) return o.max_deviation_mm;
+  return o.max_deviation_pct > 0.0 ? o.max_deviation_pct / 100.0 * diag : HUGE_VAL;
+}
+
 double optimizer_bytes(Eigen::Index tets, Eigen::Index vertices) {
   return 700.0 * static_cast<double>(tets) + 100.0 * std::pow(static_cast<double>(vertices), 4.0 / 3.0);
 }
@@ -96,7 +101,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   factor_global_step(before);
   state_ = local_.make_state();
   V_ = mesh.V;
-  budget_ = o.max_deviation_pct > 0.0 ? o.max_deviation_pct / 100.0 * diag : HUGE_VAL;
+  budget_ = deviation_budget(o, diag);
   for (const auto& tet_pieces : local_.pieces)
     for (const auto& pc : tet_pieces) piece_area_ += pc.second;  // AE is a share of this area
   plate_ = (mesh.V * d).minCoeff();
@@ -147,25 +152,27 @@ IterationStats SupportSlimmer::step() {
   }
   ScopedSeconds timer(times_.measure);
   const Points solved = proposed;  // the global step's own minimiser, before the guards move it
-  int held_back = 0;
+  int held_back = 0, features_held = 0;
   bool inversion_cut = false;
-  const bool guarded = guard(proposed, held_back, inversion_cut);
+  const bool guarded = guard(proposed, held_back, features_held, inversion_cut);
   IterationStats stats = measure(solved, proposed, guarded, inversion_cut, held_back);
+  stats.features_held = features_held;
   V_ = std::move(proposed);
   return stats;
 }
 
-bool SupportSlimmer::guard(Points& proposed, int& held_back, bool& inversion_cut) {
+bool SupportSlimmer::guard(Points& proposed, int& held_back, int& features_held, bool& inversion_cut) {
   const Tets& T = domain_.mesh.T;
   bool guarded = keep_above_plate(proposed, measure_.print_direction, plate_);
   if (std::isfinite(budget_)) {
-    const BudgetGuard budget = keep_within_budget(domain_.mesh.V, V_, proposed, budget_, features_->vertex());
-    if (budget != BudgetGuard::Within) guarded = true;
-    if (budget == BudgetGuard::CutBack) guard_stop_ = "deviation budget reached by a rigid feature";
+    const BudgetGuard budget = keep_within_budget(domain_.mesh.V, V_, proposed, budget_, features_->vertex_feature());
+    guarded = guarded || budget.moved();
+    features_held = budget.groups_held;
   }
   const std::vector<int> probe = inverted_tets(proposed, T);
   if (probe.empty()) return guarded;
-  if (coherence_.local_inversion_guard && roll_back_inverting(V_, proposed, T, features_->vertex(), probe, held_back))
+  if (coherence_.local_inversion_guard &&
+      roll_back_inverting(V_, proposed, T, features_->vertex_feature(), probe, held_back))
     return true;
   cut_back_to_valid(V_, proposed, T, probe);
   inversion_cut = true;

@@ -24,7 +24,7 @@
 //   Returns the iterate's statistics (slimming.h: IterationStats); the iterate becomes current.
 // Outputs of the current iterate: surface_positions() #V by 3 mm, overhang() at alpha_max,
 //   displacement() #V from the input (mm); guard_stop(): why a guard ended the run in this step
-//   (a whole step cut back), empty when none did.
+//   (the paper's inversion guard cut the whole step back), empty when none did.
 // Errors: std::invalid_argument from the memory guard; std::runtime_error from the global step.
 #pragma once
 
@@ -62,7 +62,7 @@ class SupportSlimmer {
  private:
   void factor_global_step(const OverhangReport& before);
   // The guards on the global step's solution; true when they moved it.
-  bool guard(Points& proposed, int& held_back, bool& inversion_cut);
+  bool guard(Points& proposed, int& held_back, int& features_held, bool& inversion_cut);
   IterationStats measure(const Points& solved, const Points& accepted, bool guarded, bool inversion_cut, int held_back);
 
   const Surface& input_;
@@ -85,6 +85,10 @@ class SupportSlimmer {
   std::string guard_stop_;
   SlimmingStageSeconds times_;
 };
+
+// The deviation budget in mm for a part whose bbox diagonal is `diag` (mm): max_deviation_mm when
+// it is > 0, else max_deviation_pct of diag; HUGE_VAL for none.
+double deviation_budget(const SlimmingOptions& options, double diag);
 
 // Peak memory of the optimizer for a domain of `tets` tets and `vertices` vertices, in bytes:
 // about 650 bytes per tet (rest inverses, L, M and the extra rotations, face pieces, ARAP's rest

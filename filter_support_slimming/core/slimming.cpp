@@ -40,6 +40,8 @@ void validate_options(const Surface& input, const SlimmingOptions& o) {
   if (!(o.margin_deg >= 0.0 && o.margin_deg < 45.0)) throw std::invalid_argument("the angular margin must be in [0, 45) degrees");
   if (!(o.max_step_deg > 0.0 && o.max_step_deg <= 180.0)) throw std::invalid_argument("the rotation step cap must be in (0, 180] degrees");
   if (!std::isfinite(o.max_deviation_pct)) throw std::invalid_argument("the deviation budget must be a finite percentage");
+  if (!std::isfinite(o.max_deviation_mm) || o.max_deviation_mm < 0.0)
+    throw std::invalid_argument("the deviation budget in mm must be finite and 0 (none) or more");
   if (!o.rigid_features.empty() && o.rigid_features.size() != static_cast<size_t>(input.F.rows()))
     throw std::invalid_argument("the rigid-feature marks must have one entry per face");
   validate_coherence(o.coherence);
@@ -122,6 +124,8 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
     if (o.progress && !o.progress(fraction, message)) throw Cancelled();
   };
   SlimmingResult r = unchanged(input, analyse_overhang(checked, measure));
+  const double budget = deviation_budget(o, diag);
+  r.deviation_budget_mm = std::isfinite(budget) ? budget : 0.0;
   auto finish = [&](const std::string& why) {
     r.stop_reason = why;
     r.seconds = seconds_since(start);

@@ -22,9 +22,11 @@
 //
 // Stopping: the first of  max_iterations;  the overhang deficit (overhang.h: risky area weighted
 // by how far each face is from safe) no longer falling by stall_tolerance of its initial value;
-// cancel. The deviation budget (the largest vertex displacement, % of the bbox diagonal) is a
-// constraint, not a stop: after every global step the part of the step that would take a domain
-// vertex past the budget is rolled back, so no surface vertex ever moves further.
+// the paper's inversion guard cutting a step back; cancel. The deviation budget (the largest
+// vertex displacement, % of the bbox diagonal or a length) is a constraint, not a stop: after every
+// global step the part of the step that would take a domain vertex past the budget is rolled
+// back, so no surface vertex ever moves further; a rigid feature that reaches it holds there, in
+// one piece, while the rest goes on.
 // The result is the iterate with the least shadow volume (overhang.h: the support it needs,
 // estimated), then the least risky area, the later one on ties, among the iterates with no more
 // risky area than the input; the input itself when no iterate beats it. So neither the risky
@@ -100,6 +102,8 @@ struct SlimmingOptions {
   SlimmingMethod method = SlimmingMethod::Coherent;
   int max_iterations = 40;           // 0: embed and write back only
   double max_deviation_pct = 5.0;    // deviation budget, % of the bbox diagonal (<= 0: none)
+  double max_deviation_mm = 0.0;     // > 0: the budget as this length instead (mm), e.g. a share
+                                     // of the part as the user gave it before it was turned
   double stall_tolerance = 1e-3;     // stop when an iteration removes less than this share of the
                                      // initial overhang deficit
   double margin_deg = 1.0;           // solve for alpha_max - margin, measure at alpha_max
@@ -143,6 +147,9 @@ struct IterationStats {
   // Coherent: domain vertices the inversion guard put back where they were in this iteration,
   // because the step would have turned a tet around them inside out.
   int held_back_vertices = 0;
+  // Rigid features whose step the deviation budget cut back in this iteration: they hold at the
+  // budget, in one piece, while the rest of the part goes on.
+  int features_held = 0;
   int risky_tets = 0;
 };
 
@@ -167,6 +174,7 @@ struct SlimmingResult {
   bool inside_out = false;
   Eigen::VectorXd displacement;       // #V, mm
   double volume_before = 0.0, volume_after = 0.0;  // signed enclosed volume, mm³
+  double deviation_budget_mm = 0.0;   // the budget the run held to (0: none)
   int domain_vertices = 0, domain_tets = 0;
   std::string solver_backend;
   double seconds = 0.0;               // wall time of the whole run

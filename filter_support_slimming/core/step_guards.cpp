@@ -47,31 +47,40 @@ bool keep_above_plate(Points& proposed, const Eigen::Vector3d& d, double plate) 
 }
 
 BudgetGuard keep_within_budget(const Points& rest, const Points& current, Points& proposed, double budget,
-                               const std::vector<bool>& together) {
-  std::vector<Eigen::Index> over;
-  bool touches_together = false;
-  for (Eigen::Index v = 0; v < proposed.rows(); ++v)
-    if ((proposed.row(v) - rest.row(v)).norm() > budget) {
-      over.push_back(v);
-      touches_together = touches_together || together[static_cast<size_t>(v)];
+                               const std::vector<int>& group) {
+  BudgetGuard outcome;
+  std::vector<int> overshooting_groups;
+  for (Eigen::Index v = 0; v < proposed.rows(); ++v) {
+    const Eigen::RowVector3d offset = proposed.row(v) - rest.row(v);
+    if (!(offset.norm() > budget)) continue;
+    const int g = group[static_cast<size_t>(v)];
+    if (g >= 0) {
+      overshooting_groups.push_back(g);
+      continue;
     }
-  if (over.empty()) return BudgetGuard::Within;
-  if (!touches_together) {
-    for (Eigen::Index v : over) {
-      const Eigen::RowVector3d offset = proposed.row(v) - rest.row(v);
-      proposed.row(v) = rest.row(v) + offset * (budget / offset.norm());
+    proposed.row(v) = rest.row(v) + offset * (budget / offset.norm());
+    ++outcome.projected;
+  }
+  std::sort(overshooting_groups.begin(), overshooting_groups.end());
+  overshooting_groups.erase(std::unique(overshooting_groups.begin(), overshooting_groups.end()), overshooting_groups.end());
+  for (int g : overshooting_groups) {
+    std::vector<Eigen::Index> members;
+    for (Eigen::Index v = 0; v < proposed.rows(); ++v)
+      if (group[static_cast<size_t>(v)] == g) members.push_back(v);
+    auto fits = [&](double f) {
+      for (Eigen::Index v : members)
+        if ((current.row(v) + f * (proposed.row(v) - current.row(v)) - rest.row(v)).norm() > budget) return false;
+      return true;
+    };
+    double lo = 0.0, hi = 1.0;
+    for (int b = 0; b < 30; ++b) {
+      const double mid = 0.5 * (lo + hi);
+      (fits(mid) ? lo : hi) = mid;
     }
-    return BudgetGuard::Projected;
+    for (Eigen::Index v : members) proposed.row(v) = current.row(v) + lo * (proposed.row(v) - current.row(v));
+    ++outcome.groups_held;
   }
-  const Points step = proposed - current;
-  double lo = 0.0, hi = 1.0;
-  for (int b = 0; b < 30; ++b) {
-    const double mid = 0.5 * (lo + hi);
-    const Points trial = current + mid * step;
-    ((trial - rest).rowwise().norm().maxCoeff() <= budget ? lo : hi) = mid;
-  }
-  proposed = current + lo * step;
-  return BudgetGuard::CutBack;
+  return outcome;
 }
 
 std::vector<int> inverted_tets(const Points& P, const Tets& T) {
@@ -85,17 +94,28 @@ std::vector<int> inverted_tets(const Points& P, const Tets& T) {
   return list;
 }
 
-bool roll_back_inverting(const Points& current, Points& proposed, const Tets& T, const std::vector<bool>& together,
+bool roll_back_inverting(const Points& current, Points& proposed, const Tets& T, const std::vector<int>& group,
                          std::vector<int> inverting, int& held_back) {
   Points trial = proposed;
   std::vector<char> back(static_cast<size_t>(current.rows()), 0);
+  std::vector<char> group_back;
+  auto hold = [&](Eigen::Index v) {
+    trial.row(v) = current.row(v);
+    back[static_cast<size_t>(v)] = 1;
+  };
   for (int round = 0; round < kMaxRollBackRounds && !inverting.empty(); ++round) {
     for (int t : inverting)
       for (int k = 0; k < 4; ++k) {
-        const int v = T(t, k);
-        if (together[static_cast<size_t>(v)]) return false;
-        trial.row(v) = current.row(v);
-        back[static_cast<size_t>(v)] = 1;
+        const int v = T(t, k), g = group[static_cast<size_t>(v)];
+        if (g < 0) {
+          hold(v);
+          continue;
+        }
+        if (group_back.size() <= static_cast<size_t>(g)) group_back.resize(static_cast<size_t>(g) + 1, 0);
+        if (group_back[static_cast<size_t>(g)]) continue;
+        group_back[static_cast<size_t>(g)] = 1;  // the whole feature goes back, in one piece
+        for (Eigen::Index u = 0; u < current.rows(); ++u)
+          if (group[static_cast<size_t>(u)] == g) hold(u);
       }
     inverting = inverted_tets(trial, T);
   }

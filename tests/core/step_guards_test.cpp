@@ -1,6 +1,7 @@
 // The step guards (core/step_guards.h) one by one on a small tet grid: each is a pure function of
 // (rest, current, proposed, tets), so each invariant is checked where it is made: the plate holds,
-// the budget holds, the rolled-back and the cut-back shapes invert no tet.
+// the budget holds (a rigid group in one piece), the rolled-back and the cut-back shapes invert no
+// tet.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -71,43 +72,64 @@ TEST(StepGuards, BudgetProjectsOnlyTheVerticesThatOvershoot) {
   const double budget = 0.25;
   const Points proposed_in = jittered(m.V, 0.3, 2);
   Points proposed = proposed_in;
-  const std::vector<bool> none(static_cast<size_t>(m.V.rows()), false);
-  EXPECT_EQ(keep_within_budget(m.V, m.V, proposed, budget, none), BudgetGuard::Projected);
+  const std::vector<int> none(static_cast<size_t>(m.V.rows()), -1);
+  const BudgetGuard outcome = keep_within_budget(m.V, m.V, proposed, budget, none);
+  EXPECT_GT(outcome.projected, 0);
+  EXPECT_EQ(outcome.groups_held, 0);
+  int overshooting = 0;
   for (Eigen::Index v = 0; v < proposed.rows(); ++v) {
     const Eigen::RowVector3d before = proposed_in.row(v) - m.V.row(v), after = proposed.row(v) - m.V.row(v);
     EXPECT_LE(after.norm(), budget * (1 + 1e-12)) << "vertex " << v;
     if (before.norm() > budget) {
+      ++overshooting;
       EXPECT_NEAR(after.norm(), budget, 1e-12);                    // onto the ball
       EXPECT_NEAR(after.dot(before), after.norm() * before.norm(), 1e-12);  // the same direction
     } else {
       EXPECT_FALSE(moved(proposed, proposed_in, v));
     }
   }
+  EXPECT_EQ(outcome.projected, overshooting);
   Points within = m.V;
-  EXPECT_EQ(keep_within_budget(m.V, m.V, within, budget, none), BudgetGuard::Within);
+  EXPECT_FALSE(keep_within_budget(m.V, m.V, within, budget, none).moved());
   EXPECT_EQ(within, m.V);
 }
 
-TEST(StepGuards, BudgetCutsTheWholeStepBackWhenARigidVertexWouldOvershoot) {
+TEST(StepGuards, BudgetHoldsARigidGroupBackInOnePieceAndProjectsTheRest) {
   const TetMesh m = grid();
   const double budget = 0.25;
   const Points current = jittered(m.V, 0.05, 3);  // within the budget
   const Points proposed_in = jittered(m.V, 0.6, 4);
-  std::vector<bool> rigid(static_cast<size_t>(m.V.rows()), false);
-  Eigen::Index far = 0;
-  ((proposed_in - m.V).rowwise().norm()).maxCoeff(&far);
-  rigid[static_cast<size_t>(far)] = true;
+  // The group: the vertices of the top layer (z = 3), one rigid feature.
+  std::vector<int> group(static_cast<size_t>(m.V.rows()), -1);
+  std::vector<Eigen::Index> members;
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v)
+    if (m.V(v, 2) == 3.0) group[static_cast<size_t>(v)] = 0, members.push_back(v);
   Points proposed = proposed_in;
-  EXPECT_EQ(keep_within_budget(m.V, current, proposed, budget, rigid), BudgetGuard::CutBack);
-  // One fraction f for every vertex: proposed = current + f (proposed_in - current).
+  const BudgetGuard outcome = keep_within_budget(m.V, current, proposed, budget, group);
+  EXPECT_EQ(outcome.groups_held, 1);
+  EXPECT_GT(outcome.projected, 0);
+  EXPECT_LE((proposed - m.V).rowwise().norm().maxCoeff(), budget * (1 + 1e-12));
+  // The group: one fraction f for all its vertices, proposed = current + f (proposed_in - current),
+  // the largest that fits (a little more overshoots).
   const Points step = proposed_in - current;
-  const double f = (proposed.row(far) - current.row(far)).norm() / step.row(far).norm();
+  const Eigen::Index first = members.front();
+  const double f = (proposed.row(first) - current.row(first)).norm() / step.row(first).norm();
   EXPECT_GT(f, 0.0);
   EXPECT_LT(f, 1.0);
-  EXPECT_LT((proposed - (current + f * step)).cwiseAbs().maxCoeff(), 1e-12);
-  EXPECT_LE((proposed - m.V).rowwise().norm().maxCoeff(), budget);
-  // The largest such fraction: a little more overshoots.
-  EXPECT_GT((current + (f + 1e-6) * step - m.V).rowwise().norm().maxCoeff(), budget);
+  double worst = 0.0;
+  for (Eigen::Index v : members) {
+    EXPECT_LT((proposed.row(v) - (current.row(v) + f * step.row(v))).cwiseAbs().maxCoeff(), 1e-12) << "vertex " << v;
+    worst = std::max(worst, (current.row(v) + (f + 1e-6) * step.row(v) - m.V.row(v)).norm());
+  }
+  EXPECT_GT(worst, budget);
+  // The others: projected on their own, exactly as without a group.
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v) {
+    if (group[static_cast<size_t>(v)] >= 0) continue;
+    const Eigen::RowVector3d before = proposed_in.row(v) - m.V.row(v);
+    const Eigen::RowVector3d expected = before.norm() > budget ? Eigen::RowVector3d(m.V.row(v) + before * (budget / before.norm()))
+                                                               : Eigen::RowVector3d(proposed_in.row(v));
+    EXPECT_LT((proposed.row(v) - expected).cwiseAbs().maxCoeff(), 1e-12) << "vertex " << v;
+  }
 }
 
 TEST(StepGuards, InvertedTetsAreFoundExactly) {
@@ -134,7 +156,7 @@ TEST(StepGuards, RollBackLeavesNoInvertedTetAndMovesOnlyWhatItMust) {
   proposed_in.row(inside) += Eigen::RowVector3d(0.0, 1.6, 0.0);
   proposed_in.row(0) += Eigen::RowVector3d(0.01, 0.02, 0.0);  // a harmless move far away
   Points proposed = proposed_in;
-  const std::vector<bool> none(static_cast<size_t>(m.V.rows()), false);
+  const std::vector<int> none(static_cast<size_t>(m.V.rows()), -1);
   int held_back = 0;
   ASSERT_TRUE(roll_back_inverting(current, proposed, m.T, none, inverted_tets(proposed_in, m.T), held_back));
   EXPECT_TRUE(inverted_tets(proposed, m.T).empty());
@@ -154,17 +176,26 @@ TEST(StepGuards, RollBackLeavesNoInvertedTetAndMovesOnlyWhatItMust) {
   EXPECT_EQ(proposed.row(0), proposed_in.row(0));  // the harmless move stands
 }
 
-TEST(StepGuards, RollBackRefusesToMoveARigidVertexAlone) {
+TEST(StepGuards, RollBackTakesARigidGroupBackWhole) {
   const TetMesh m = grid();
-  Points proposed = m.V;
+  const Points current = jittered(m.V, 0.05, 6);
+  // A rigid group, the layer z = 1, moved as a body; one of its vertices pushed through the tets
+  // around it as well.
+  std::vector<int> group(static_cast<size_t>(m.V.rows()), -1);
+  Points proposed = current;
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v)
+    if (m.V(v, 2) == 1.0) group[static_cast<size_t>(v)] = 0, proposed.row(v) += Eigen::RowVector3d(0.05, 0.0, 0.0);
   const int inside = 2 + 5 * (2 + 5 * 1);
   proposed.row(inside) += Eigen::RowVector3d(0.0, 1.6, 0.0);
+  proposed.row(0) += Eigen::RowVector3d(0.01, 0.0, 0.0);  // not in the group, not near
   const Points proposed_in = proposed;
-  std::vector<bool> rigid(static_cast<size_t>(m.V.rows()), false);
-  rigid[static_cast<size_t>(inside)] = true;
   int held_back = 0;
-  EXPECT_FALSE(roll_back_inverting(m.V, proposed, m.T, rigid, inverted_tets(proposed, m.T), held_back));
-  EXPECT_EQ(proposed, proposed_in);  // untouched when it refuses
+  ASSERT_TRUE(roll_back_inverting(current, proposed, m.T, group, inverted_tets(proposed, m.T), held_back));
+  EXPECT_TRUE(inverted_tets(proposed, m.T).empty());
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v)
+    if (group[static_cast<size_t>(v)] == 0) EXPECT_EQ(proposed.row(v), current.row(v)) << "vertex " << v;
+  EXPECT_GE(held_back, 25);  // the whole layer
+  EXPECT_EQ(proposed.row(0), proposed_in.row(0));
 }
 
 TEST(StepGuards, CutBackKeepsEveryTetPositiveAndGoesAsFarAsItCan) {

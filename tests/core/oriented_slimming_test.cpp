@@ -1,0 +1,42 @@
+// Orient, then slim (core/oriented_slimming.h): the deviation budget is the user's, a share of the
+// part as given, whatever pose the search picks.
+#include <gtest/gtest.h>
+
+#include "core/oriented_slimming.h"
+#include "support/shapes.h"
+
+using namespace slim;
+
+#ifdef SLIM_TESTS_HAVE_VCG
+namespace {
+double diag(const Points& V) { return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm(); }
+}  // namespace
+
+TEST(OrientedSlimming, TheBudgetIsAShareOfThePartAsGiven) {
+  const Surface bunny = test::load_mesh(test::sample_bunny_path());
+  for (double pct : {2.0, 5.0}) {
+    SlimmingOptions o;
+    o.max_deviation_pct = pct;
+    const OrientedSlimming job = slim_in_best_pose(bunny, o, with_effort(OrientationEffort::Fast));
+    const double budget = pct / 100.0 * diag(bunny.V);
+    // The pose changes the bounding box: a budget read from it would be another length.
+    EXPECT_GT(std::abs(diag(job.posed.V) - diag(bunny.V)), 1e-3 * diag(bunny.V)) << "the pose keeps the box: no test";
+    EXPECT_NEAR(job.slimming.deviation_budget_mm, budget, 1e-9 * budget);
+    // The slimming's displacement, measured in the pose against the oriented part, within it.
+    ASSERT_EQ(job.slimming.surface.V.rows(), job.posed.V.rows());
+    const double moved = (job.slimming.surface.V - job.posed.V).rowwise().norm().maxCoeff();
+    EXPECT_LE(moved, budget * (1 + 1e-9)) << pct << "%";
+    EXPECT_NEAR(job.slimming.displacement.maxCoeff(), moved, 1e-9 * budget);
+    EXPECT_GT(job.slimming.iterations, 0);
+  }
+}
+
+TEST(OrientedSlimming, ALengthGivenStaysThatLength) {
+  const Surface T = test::transformed(test::t_shape(), test::axis_angle(Eigen::Vector3d(1, 0, 0), 2.0));
+  SlimmingOptions o;
+  o.max_deviation_mm = 1.5;
+  const OrientedSlimming job = slim_in_best_pose(T, o, with_effort(OrientationEffort::Fast));
+  EXPECT_EQ(job.slimming.deviation_budget_mm, 1.5);
+  EXPECT_LE(job.slimming.displacement.maxCoeff(), 1.5 * (1 + 1e-9));
+}
+#endif
