@@ -15,11 +15,8 @@ using namespace slim;
 #ifdef SLIM_TESTS_HAVE_VCG
 namespace {
 
-const Surface& bunny() {
-  static const Surface s = test::load_mesh(test::sample_bunny_path());
-  return s;
-}
-double diag(const Surface& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
+const Surface& bunny() { return test::sample_bunny(); }
+double diag(const Surface& s) { return test::bbox_diagonal(s); }
 
 // The faces whose three vertices lie above `share` of the height: the bunny's head and ears.
 std::vector<bool> top_faces(const Surface& s, double share) {

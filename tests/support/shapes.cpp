@@ -167,8 +167,16 @@ std::string sample_bunny_path() { return std::string(SLIM_DATA_DIR) + "/bunny.pl
 #include "vcg_adapters/mesh_io.h"
 namespace slim::test {
 Surface load_mesh(const std::string& path) { return vcgx::load_surface(path); }
+const Surface& sample_bunny() {
+  static const Surface s = load_mesh(sample_bunny_path());
+  return s;
+}
 }  // namespace slim::test
 #endif
+
+namespace slim::test {
+double bbox_diagonal(const Surface& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
+}  // namespace slim::test
 
 namespace slim::test {
 

@@ -50,7 +50,12 @@ std::string sample_bunny_path();
 #ifdef SLIM_TESTS_HAVE_VCG
 // Loads any mesh VCG reads (PLY, STL, OBJ, OFF) into a Surface; throws on failure.
 Surface load_mesh(const std::string& path);
+// The sample bunny, loaded once.
+const Surface& sample_bunny();
 #endif
+
+// The length of the bounding box's diagonal (mm).
+double bbox_diagonal(const Surface& s);
 
 }  // namespace slim::test
 
