@@ -12,6 +12,7 @@
 #include "core/overhang.h"
 #include "core/shape_metrics.h"
 #include "gcode_extrusion.h"
+#include "orient_faces.h"
 #include "print_setup.h"
 #include "vcg_adapters/mesh_io.h"
 #include "vtk_writer.h"
@@ -19,10 +20,12 @@
 namespace {
 
 const char* kUsage = R"(usage:
-  slim-eval prepare IN OUT_BASE [--size MM] [--dir X,Y,Z]
+  slim-eval prepare IN OUT_BASE [--size MM] [--dir X,Y,Z] [--orient-faces yes|no]
       The part in the print frame: print direction turned onto +Z, scaled so its longest side is
       MM (default 60; 0 keeps the scale), resting on z = 0, centred on the Z axis. Writes
-      OUT_BASE.ply. Prints scale, size, diag, vertices, faces.
+      OUT_BASE.ply. Prints scale, size, diag, vertices, faces. With --orient-faces yes, faces that
+      disagree with their neighbours are turned first, each piece outward (orient_faces.h), and
+      flipped_faces says how many.
   slim-eval measure MESH [--angle DEG] [--plate-tolerance MM] [--reference REF] [--stl OUT.stl]
                          [--overhang-ply OUT.ply] [--displacement-vtk OUT.vtk]
       Risky area and the support proxy (shadow volume, overhang.h) with +Z up, area, volume, bbox;
@@ -113,8 +116,16 @@ int prepare(const Args& a) {
   if (size < 0) die("--size must not be negative");
   Eigen::Vector3d dir = Eigen::Vector3d::UnitZ();
   if (const std::string* d = a.get("--dir")) dir = Eigen::Vector3d(numbers("--dir", *d, 3).data());
-  const slim::Surface in = slim::vcgx::load_surface(a.positional[0]);
+  slim::Surface in = slim::vcgx::load_surface(a.positional[0]);
   if (in.F.rows() == 0) die(a.positional[0] + " has no faces");
+  const std::string orient = a.get("--orient-faces") ? *a.get("--orient-faces") : "no";
+  if (orient != "yes" && orient != "no") die("--orient-faces expects yes or no, got '" + orient + "'");
+  if (orient == "yes") {
+    const slim::eval::OrientedFaces o = slim::eval::orient_faces(in);
+    if (!o.orientable) die(a.positional[0] + " has a non-orientable piece: its faces cannot all agree");
+    in = o.surface;
+    std::cout << "flipped_faces=" << o.flipped << "\n";
+  }
   const slim::eval::PrintFrame frame = slim::eval::to_print_frame(in, dir, size);
   slim::vcgx::save_surface(a.positional[1] + ".ply", frame.surface);
   std::cout << "scale=" << frame.scale << "\nsize=" << triple(frame.size) << "\ndiag=" << frame.size.norm()
@@ -236,7 +247,7 @@ int main(int argc, char** argv) {
   }
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   try {
-    if (args[0] == "prepare") return prepare(parse(rest, {"--size", "--dir"}, 2));
+    if (args[0] == "prepare") return prepare(parse(rest, {"--size", "--dir", "--orient-faces"}, 2));
     if (args[0] == "measure")
       return measure(parse(rest, {"--angle", "--plate-tolerance", "--reference", "--stl", "--overhang-ply", "--displacement-vtk"}, 1));
     if (args[0] == "gcode") return gcode(parse(rest, {"--filament-diameter"}, 1));

@@ -12,6 +12,7 @@
 
 #include "core/shape_metrics.h"
 #include "gcode_extrusion.h"
+#include "key_values.h"
 #include "run_command.h"
 #include "support/shapes.h"
 #include "vcg_adapters/mesh_io.h"
@@ -25,24 +26,8 @@ namespace {
 // ~1.2%); a real saving must be clearly larger.
 constexpr double kSlicerNoise = 0.02;
 
-// Kept after the test (overwritten by the next run): the reports are worth a look.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(SLIM_EVAL_OUT_DIR) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::map<std::string, double> read_metrics(const fs::path& file) {
-  std::map<std::string, double> m;
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line)) {
-    const size_t eq = line.find('=');
-    if (eq != std::string::npos) m[line.substr(0, eq)] = std::stod(line.substr(eq + 1));
-  }
-  return m;
-}
+fs::path scratch(const std::string& name) { return test::scratch_dir(SLIM_EVAL_OUT_DIR, name); }
+std::map<std::string, double> read_metrics(const fs::path& file) { return test::read_key_values(file); }
 
 std::string read_text(const fs::path& file) {
   std::ifstream in(file);

@@ -8,6 +8,7 @@
 
 #include "core/overhang.h"
 #include "gcode_extrusion.h"
+#include "orient_faces.h"
 #include "print_setup.h"
 #include "support/shapes.h"
 
@@ -201,4 +202,22 @@ TEST(PrintFrame, TurnsScalesAndRestsThePartOnThePlate) {
   EXPECT_EQ(analyse_overhang(flipped.surface).risky_count, 0);  // an upside-down T needs no support
 
   EXPECT_THROW(eval::to_print_frame(t, Eigen::Vector3d::Zero(), 60.0), std::invalid_argument);
+}
+
+TEST(OrientFaces, TurnsTheFacesThatDisagreeAndEachPieceOutward) {
+  // A box with three faces turned over, and beside it a whole box inside out.
+  Surface s = test::merge(test::box({0, 0, 0}, {1, 1, 1}), flipped(test::box({3, 0, 0}, {4, 2, 1})));
+  for (int f : {0, 5, 9}) std::swap(s.F(f, 1), s.F(f, 2));
+  EXPECT_GT(edge_topology(s).flipped_edges, 0);
+  const eval::OrientedFaces o = eval::orient_faces(s);
+  EXPECT_TRUE(o.orientable);
+  EXPECT_EQ(o.flipped, 3 + 12);
+  EXPECT_EQ(edge_topology(o.surface).flipped_edges, 0);
+  EXPECT_NEAR(signed_volume(o.surface), 1.0 + 2.0, 1e-12);
+  EXPECT_EQ(o.surface.V, s.V);  // vertices stay, faces keep their order
+  // A mesh that agrees already is left alone.
+  const Surface t = test::t_shape();
+  const eval::OrientedFaces same = eval::orient_faces(t);
+  EXPECT_EQ(same.flipped, 0);
+  EXPECT_EQ(same.surface.F, t.F);
 }

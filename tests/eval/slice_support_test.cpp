@@ -10,6 +10,7 @@
 
 #include "gcode_extrusion.h"
 #include "print_setup.h"
+#include "key_values.h"
 #include "run_command.h"
 #include "support/shapes.h"
 #include "vcg_adapters/mesh_io.h"
@@ -19,27 +20,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(SLIM_EVAL_OUT_DIR) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::map<std::string, double> parse_metrics(const std::string& text) {
-  std::map<std::string, double> m;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    const size_t eq = line.find('=');
-    if (eq == std::string::npos) continue;
-    try {
-      m[line.substr(0, eq)] = std::stod(line.substr(eq + 1));
-    } catch (const std::exception&) {  // slicer=prusa, turns=0,90,...: not numbers
-    }
-  }
-  return m;
-}
+fs::path scratch(const std::string& name) { return test::scratch_dir(SLIM_EVAL_OUT_DIR, name); }
+std::map<std::string, double> parse_metrics(const std::string& text) { return test::parse_key_values(text); }
 
 test::CommandRun slice(const fs::path& stl, const std::string& slicer, const fs::path& out, const std::string& more = "") {
   return test::run_command(test::shell_quote(SLIM_SOURCE_DIR "/tools/slice_support.sh") + " " + test::shell_quote(stl.string()) +
