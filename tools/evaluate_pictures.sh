@@ -9,7 +9,7 @@
 
 # caption PNG TEXT: a line of text above a picture (needs a font; the picture is fine without).
 caption() {
-  convert "$1" -background white -gravity north -splice 0x32 -font DejaVu-Sans -pointsize 18 \
+  convert "$1" +repage -background white -gravity north -splice 0x32 -font DejaVu-Sans -pointsize 18 \
     -annotate +0+6 "$2" "$1" 2>/dev/null || true
 }
 
@@ -78,10 +78,11 @@ render_support() {
   for slicer in "${slicer_list[@]}"; do
     row=()
     for part in "${parts[@]}"; do
-      local png="$out/slices/$part/${slicer}_support.png"
+      local png="$out/slices/$part/${slicer}_support.png" label=PrusaSlicer
+      [ "$slicer" = prusa ] || label=Cura
       f3d_shot "$png" "$out/slices/$part/${slicer}_toolpath.vtk" 0.2 --scalars=support --cells \
         --colormap=0,0.72,0.72,0.72,1,0.93,0.38,0.08
-      caption "$png" "$part, $slicer: $(fmt 0 "$(kv "$out/slices/$part/${slicer}_turn$first.txt" support_mm3)") mm³ of support"
+      caption "$png" "$part, $label: $(fmt 0 "$(kv "$out/slices/$part/${slicer}_turn$first.txt" support_mm3)") mm³ of support"
       row+=("$png")
     done
     convert "${row[@]}" +append "$out/support_$slicer.png" || die "ImageMagick could not join the support pictures"
