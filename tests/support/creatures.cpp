@@ -26,7 +26,19 @@ class McFace : public vcg::Face<McTypes, vcg::face::VertexRef, vcg::face::BitFla
 class McMesh : public vcg::tri::TriMesh<std::vector<McVertex>, std::vector<McFace>> {};
 
 using Volume = vcg::SimpleVolume<vcg::SimpleVoxel<float>>;
-using Walker = vcg::tri::TrivialWalker<McMesh, Volume>;
+// VCG's TrivialWalker allocates its slice caches in SetExtractionBox (which BuildMesh calls) and
+// never frees them.
+class Walker : public vcg::tri::TrivialWalker<McMesh, Volume> {
+ public:
+  ~Walker() {
+    if (_slice_dimension == 0) return;  // never allocated
+    delete[] _x_cs;
+    delete[] _y_cs;
+    delete[] _z_cs;
+    delete[] _x_ns;
+    delete[] _z_ns;
+  }
+};
 using Cubes = vcg::tri::MarchingCubes<McMesh, Walker>;
 using Field = std::function<double(const Eigen::Vector3d&)>;  // < 0 inside, about a distance in mm
 
