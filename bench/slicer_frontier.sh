@@ -90,6 +90,8 @@ run_one() {  # NAME METHOD BUDGET
 
 prepare_input() {  # NAME
   local in_dir="$out/$1/input"
+  # A model the corpus has remade since: every cached run of it is stale.
+  if [ -f "$in_dir/input.ply" ] && [ "$corpus/$1.ply" -nt "$in_dir/input.ply" ]; then rm -rf "${out:?}/$1"; fi
   mkdir -p "$in_dir"
   if [ ! -s "$in_dir/input.txt" ]; then
     cp "$corpus/$1.ply" "$in_dir/input.ply"
