@@ -1,0 +1,70 @@
+// The part seen along the print direction, pixel by pixel: what the support model sweeps.
+//
+//   SupportRaster build_support_raster(surface, grid, rule)
+//
+// Inputs
+//   surface  #V by 3 positions (mm) in the print frame (+Z up), #F by 3 outward-oriented faces
+//            sharing their vertices. The plate is wherever the caller says (the raster only
+//            reads z values).
+//   grid     PixelGrid: nx by ny square pixels of side `pixel` mm, pixel (i, j) covering
+//            [x0 + i·pixel, x0 + (i+1)·pixel) × [y0 + j·pixel, ...). It should cover the part.
+//   rule     OverhangRule: which features need support (slopes from the horizontal, degrees).
+// Output (SupportRaster)
+//   spans     for every pixel (index i + nx·j), the solid intervals [bottom, top] (mm) of the
+//             vertical ray through its centre, sorted upwards: where the faces the ray crosses
+//             wind around it (nonzero rule, so an inside-out part reads the same). Rasterised
+//             watertight: a centre on a shared edge or vertex is counted by one face only.
+//   overhangs for every pixel that an overhanging feature touches (its square overlaps the
+//             feature's projection: conservative, so the slicer's stretching of any contact to
+//             a whole grid cell is exact), the z range of the feature over the pixel and
+//             whether it wants a dense interface. Features:
+//               - a face less steep than rule.max_slope_deg (dense when less steep than
+//                 rule.dense_slope_deg);
+//               - a bottom crease: an edge whose two faces both rise away from it, convex, with
+//                 the edge itself less steep than max_slope_deg (the first slice of a keel is a
+//                 thin island with nothing below it); dense;
+//               - a lowest vertex: below all its neighbours, on at least 3 faces; dense.
+//             A pixel may carry several overhangs (one per feature touching it).
+// Cost: O(#F + #pixels touched). Deterministic (serial).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/surface.h"
+
+namespace slim {
+
+struct PixelGrid {
+  double x0 = 0.0, y0 = 0.0;  // mm, lower-left corner of pixel (0, 0)
+  double pixel = 1.0;         // mm, > 0
+  int nx = 0, ny = 0;         // pixels along x and y
+  int count() const { return nx * ny; }
+};
+
+struct OverhangRule {
+  double max_slope_deg = 46.0;    // features less steep than this (from the horizontal) overhang
+  double dense_slope_deg = 36.5;  // overhangs less steep than this want a dense interface
+};
+
+struct SolidSpan {
+  double bottom = 0.0, top = 0.0;  // mm
+};
+
+struct PixelOverhang {
+  int pixel = 0;
+  double z_low = 0.0, z_high = 0.0;  // mm, the feature's z range over the pixel
+  bool dense = false;
+};
+
+struct SupportRaster {
+  PixelGrid grid;
+  std::vector<int> span_begin;   // #pixels + 1 offsets into spans
+  std::vector<SolidSpan> spans;  // per pixel, sorted upwards, disjoint
+  std::vector<PixelOverhang> overhangs;  // sorted by pixel, then z_low
+};
+
+SupportRaster build_support_raster(const Surface& surface, const PixelGrid& grid, const OverhangRule& rule);
+
+}  // namespace slim

@@ -1,0 +1,353 @@
+#include "core/support_sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace slim {
+namespace {
+
+using Range = std::pair<int, int>;  // [lo, hi] layers, inclusive
+constexpr double kStaircase = M_PI / 4.0;  // mean true length of a pixel outline per pixel edge
+constexpr int kNoDense = 1 << 29;
+
+// Appends [lo, hi] to sorted, disjoint ranges, merging it with the last when they touch.
+void append_merged(std::vector<Range>& out, int lo, int hi) {
+  if (lo > hi) return;
+  if (!out.empty() && lo <= out.back().second + 1) out.back().second = std::max(out.back().second, hi);
+  else out.push_back({lo, hi});
+}
+
+// a minus b, both sorted and disjoint.
+void subtract(const Range* a, const Range* a_end, const Range* b, const Range* b_end, std::vector<Range>& out) {
+  out.clear();
+  for (; a != a_end; ++a) {
+    int lo = a->first;
+    for (const Range* c = b; c != b_end && lo <= a->second; ++c) {
+      if (c->second < lo) continue;
+      if (c->first > a->second) break;
+      if (c->first > lo) out.push_back({lo, c->first - 1});
+      lo = std::max(lo, c->second + 1);
+    }
+    if (lo <= a->second) out.push_back({lo, a->second});
+  }
+}
+
+bool covers(const std::vector<Range>& ranges, int k) {
+  for (const Range& r : ranges)
+    if (r.first <= k && k <= r.second) return true;
+  return false;
+}
+
+}  // namespace
+
+int SlicerLayers::first_slice_at_or_above(double z) const {
+  if (count <= 0 || z <= slice_z(0)) return 0;
+  int k = static_cast<int>(std::max(1.0, std::min(static_cast<double>(count), std::ceil((z - first_height) / height + 0.5))));
+  while (k > 1 && slice_z(k - 1) >= z) --k;
+  while (k < count && slice_z(k) < z) ++k;
+  return k;
+}
+
+int SlicerLayers::last_slice_at_or_below(double z) const {
+  if (count <= 0 || z < slice_z(0)) return -1;
+  int k = static_cast<int>(std::max(0.0, std::min(static_cast<double>(count - 1), std::floor((z - first_height) / height + 0.5))));
+  while (k + 1 < count && slice_z(k + 1) <= z) ++k;
+  while (k > 0 && slice_z(k) > z) --k;
+  return k;
+}
+
+namespace {
+
+using RawEvent = GridSupportSweep::RawEvent;
+
+// Events of a range of layers [lo, hi]: counted from hi down to lo, as the sweep goes down.
+void add_range(std::vector<RawEvent>& raw, int pixel, const Range& r, GridSupportSweep::Kind kind) {
+  raw.push_back({r.second, {pixel, kind, 1}});
+  if (r.first > 0) raw.push_back({r.first - 1, {pixel, kind, -1}});
+}
+
+}  // namespace
+
+// Per pixel, in object layers: what the part fills, what trims a support layer there (the part
+// within contact_distance above or below), what blocks the projection (filled at j or j + 1), the
+// part's top layers, and the contacts (the support layer under each overhang).
+void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<RawEvent>& raw, std::vector<int>& trim_begin,
+                                    std::vector<std::pair<int, int>>& trims) {
+  const SlicerLayers& L = layers_;
+  const int n = grid_.count(), count = L.count;
+  const int reach = static_cast<int>(std::ceil(settings_.contact_distance / L.height - 1e-9));
+  auto contact_layer = [&](int k) {
+    const double top = L.bottom_z(k) - settings_.contact_distance + 1e-9;
+    return top < L.first_height ? -1 : static_cast<int>(std::floor((top - L.first_height) / L.height));
+  };
+  std::vector<Range> solid, trim, block, contact, dense;
+  size_t mark = 0;
+  trim_begin.assign(static_cast<size_t>(n) + 1, 0);
+  for (int p = 0; p < n; ++p) {
+    solid.clear(), trim.clear(), block.clear(), contact.clear(), dense.clear();
+    trim_begin[p] = static_cast<int>(trims.size());
+    for (int s = raster.span_begin[p]; s < raster.span_begin[p + 1]; ++s)
+      append_merged(solid, L.first_slice_at_or_above(raster.spans[s].bottom),
+                    std::min(count - 1, L.last_slice_at_or_below(raster.spans[s].top)));
+    for (const Range& x : solid) {
+      append_merged(trim, std::max(0, x.first - reach), std::min(count - 1, x.second + reach));
+      append_merged(block, std::max(0, x.first - 1), x.second);
+      add_range(raw, p, {x.second, x.second}, kTop);
+    }
+    solid_first_[p] = covers(solid, 0);
+    trimmed_first_[p] = !trim.empty() && trim.front().first == 0;
+    for (; mark < raster.overhangs.size() && raster.overhangs[mark].pixel == p; ++mark) {
+      const PixelOverhang& o = raster.overhangs[mark];
+      const int k_low = L.first_slice_at_or_above(o.z_low);
+      if (k_low >= count || (k_low > 0 && covers(solid, k_low - 1))) continue;  // hidden inside the part
+      const int high = contact_layer(std::min(count - 1, L.first_slice_at_or_above(o.z_high)));
+      if (high < 0) continue;
+      const int low = std::max(0, contact_layer(k_low));
+      append_merged(contact, low, high);
+      if (o.dense) append_merged(dense, low, high);
+    }
+    for (const Range& x : trim) add_range(raw, p, x, kTrim);
+    trims.insert(trims.end(), trim.begin(), trim.end());
+    for (const Range& x : block) add_range(raw, p, x, kBlock);
+    for (const Range& x : contact) add_range(raw, p, x, kContact);
+    for (const Range& x : dense) add_range(raw, p, x, kDense);
+  }
+  trim_begin[n] = static_cast<int>(trims.size());
+}
+
+// The part's outline in every trimmed layer: an edge between a trimmed pixel and a free one is
+// counted in the free pixel, where the xy gap and the sheath run along it.
+void GridSupportSweep::outline_events(const std::vector<int>& trim_begin, const std::vector<std::pair<int, int>>& trims,
+                                      std::vector<RawEvent>& raw) const {
+  std::vector<Range> diff;
+  for (int j = 0; j < grid_.ny; ++j) {
+    for (int i = 0; i < grid_.nx; ++i) {
+      const int p = i + grid_.nx * j;
+      for (int q : {i + 1 < grid_.nx ? p + 1 : -1, j + 1 < grid_.ny ? p + grid_.nx : -1}) {
+        if (q < 0 || (trim_begin[p] == trim_begin[p + 1] && trim_begin[q] == trim_begin[q + 1])) continue;
+        const Range *a = trims.data() + trim_begin[p], *a_end = trims.data() + trim_begin[p + 1];
+        const Range *b = trims.data() + trim_begin[q], *b_end = trims.data() + trim_begin[q + 1];
+        subtract(a, a_end, b, b_end, diff);
+        for (const Range& x : diff) add_range(raw, q, x, kOutline);
+        subtract(b, b_end, a, a_end, diff);
+        for (const Range& x : diff) add_range(raw, p, x, kOutline);
+      }
+    }
+  }
+}
+
+GridSupportSweep::GridSupportSweep(const SupportRaster& raster, const SlicerLayers& layers, const GridSweepSettings& settings)
+    : grid_(raster.grid), layers_(layers), settings_(settings) {
+  if (layers.count <= 0 || settings.pixels_per_cell < 1) throw std::invalid_argument("support sweep: no layers or no cells");
+  const int n = grid_.count(), count = layers.count;
+  solid_first_.assign(static_cast<size_t>(n), 0);
+  trimmed_first_.assign(static_cast<size_t>(n), 0);
+  std::vector<RawEvent> raw;
+  raw.reserve(static_cast<size_t>(8) * raster.spans.size() + 4 * raster.overhangs.size());
+  std::vector<int> trim_begin;
+  std::vector<Range> trims;
+  pixel_events(raster, raw, trim_begin, trims);
+  outline_events(trim_begin, trims, raw);
+  // Counting sort by layer, keeping each layer's events in the order they were made.
+  event_begin_.assign(static_cast<size_t>(count) + 1, 0);
+  for (const RawEvent& r : raw) ++event_begin_[r.layer + 1];
+  for (int k = 0; k < count; ++k) {
+    if (event_begin_[k + 1] > 0) top_layer_ = k;
+    event_begin_[k + 1] += event_begin_[k];
+  }
+  events_.resize(raw.size());
+  std::vector<int> fill(event_begin_.begin(), event_begin_.end() - 1);
+  for (const RawEvent& r : raw) events_[fill[r.layer]++] = r.event;
+}
+
+namespace {
+
+// One phase's cells: which cell every pixel lies in, and on which of its sides.
+struct CellMap {
+  int cx = 0, cy = 0;               // cells along x and y
+  std::vector<int> cell;            // per pixel
+  std::vector<std::uint8_t> sides;  // per pixel: bit s set when it lies along side s (-x, +x, -y, +y)
+  CellMap(const PixelGrid& g, int per_cell, int ox, int oy) {
+    cx = (g.nx + per_cell - 1) / per_cell + 1;
+    cy = (g.ny + per_cell - 1) / per_cell + 1;
+    cell.resize(static_cast<size_t>(g.count()));
+    sides.resize(static_cast<size_t>(g.count()));
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) {
+        const int a = i + per_cell - ox, b = j + per_cell - oy;  // shifted so cells start at the offset
+        const int li = a % per_cell, lj = b % per_cell, p = i + g.nx * j;
+        cell[p] = a / per_cell + cx * (b / per_cell);
+        sides[p] = static_cast<std::uint8_t>((li == 0) | (li == per_cell - 1) << 1 | (lj == 0) << 2 | (lj == per_cell - 1) << 3);
+      }
+    }
+  }
+};
+
+// The counters of one phase's cells at the current layer and the columns of the layer above.
+struct PhaseState {
+  int per_cell;
+  std::vector<int> count[GridSupportSweep::kKinds];
+  std::vector<int> side_trimmed[4];
+  std::vector<std::uint8_t> column_above, listed_contact, column;
+  std::vector<int> dense_distance, seen, state_layer;
+  std::vector<double> interface_weight;
+  std::vector<int> above, now, contacts;
+  PhaseState(int cells, int per_cell_) : per_cell(per_cell_) {
+    for (auto& c : count) c.assign(static_cast<size_t>(cells), 0);
+    for (auto& c : side_trimmed) c.assign(static_cast<size_t>(cells), 0);
+    column_above.assign(static_cast<size_t>(cells), 0);
+    column = listed_contact = column_above;
+    dense_distance.assign(static_cast<size_t>(cells), kNoDense);
+    seen.assign(static_cast<size_t>(cells), -1);
+    state_layer = seen;
+    interface_weight.assign(static_cast<size_t>(cells), 0.0);
+  }
+  void apply(const GridSupportSweep::Event& e, const CellMap& map) {
+    const int c = map.cell[e.pixel];
+    count[e.kind][c] += e.delta;
+    if (e.kind == GridSupportSweep::kTrim)
+      for (int s = 0; s < 4; ++s)
+        if (map.sides[e.pixel] >> s & 1) side_trimmed[s][c] += e.delta;
+    if (e.kind == GridSupportSweep::kContact && count[e.kind][c] > 0 && !listed_contact[c]) {
+      listed_contact[c] = 1;
+      contacts.push_back(c);
+    }
+  }
+};
+
+}  // namespace
+
+GridSweepResult GridSupportSweep::run(int ox, int oy) const {
+  const int S = settings_.pixels_per_cell;
+  if (ox < 0 || oy < 0 || ox >= S || oy >= S) throw std::invalid_argument("support sweep: phase offset outside the cell");
+  const CellMap map(grid_, S, ox, oy);
+  const int cells = map.cx * map.cy;
+  PhaseState st(cells, S);
+  const double p = grid_.pixel, p2 = p * p, full = static_cast<double>(S) * S;
+  const int neighbour[4] = {-1, 1, -map.cx, map.cx};
+  GridSweepResult out;
+  for (int j = top_layer_; j >= 0; --j) {
+    for (int e = event_begin_[j]; e < event_begin_[j + 1]; ++e) st.apply(events_[e], map);
+    // Columns at j: contacts here, and columns above whose projection passes.
+    st.now.clear();
+    double landing = 0.0;
+    auto consider = [&](int c) {
+      if (st.seen[c] == j) return;
+      st.seen[c] = j;
+      const bool above = st.column_above[c] != 0;
+      if (above) landing += st.count[kTop][c] * p2;
+      const bool contact = st.count[kContact][c] > 0;
+      if (!contact && !(above && st.count[kBlock][c] < full)) return;
+      st.column[c] = 1;
+      st.now.push_back(c);
+      st.dense_distance[c] = st.count[kDense][c] > 0 ? 0 : (above ? std::min(kNoDense, st.dense_distance[c] + 1) : kNoDense);
+      st.interface_weight[c] = std::clamp(settings_.interface_depth - st.dense_distance[c], 0.0, 1.0);
+      st.state_layer[c] = j;
+    };
+    for (int c : st.above) consider(c);
+    size_t kept = 0;
+    for (int c : st.contacts) {
+      if (st.count[kContact][c] <= 0) {
+        st.listed_contact[c] = 0;
+        continue;
+      }
+      st.contacts[kept++] = c;
+      consider(c);
+    }
+    st.contacts.resize(kept);
+    out.landing_area += landing;
+    out.bottom_interface += landing * settings_.bottom_interface_per_mm2;
+    // Areas, the sheath of the base islands, material.
+    double base_area = 0.0, interface_area = 0.0, outline = 0.0;
+    for (int c : st.now) {
+      const double area = std::max(0.0, (full - st.count[kTrim][c]) * p2 - settings_.xy_gap * st.count[kOutline][c] * p * kStaircase);
+      const double w = st.interface_weight[c];
+      base_area += (1.0 - w) * area;
+      interface_area += w * area;
+      if (st.count[kContact][c] > 0) out.contact_area += area;
+      if (!settings_.sheath || w >= 0.5) continue;
+      outline += st.count[kOutline][c] * p * kStaircase;
+      for (int s = 0; s < 4; ++s) {
+        const int n = c + neighbour[s];
+        const bool base_neighbour = n >= 0 && n < cells && st.state_layer[n] == j && st.interface_weight[n] < 0.5;
+        if (!base_neighbour) outline += (S - st.side_trimmed[s][c]) * p;
+      }
+    }
+    const double t = layers_.thickness(j);
+    out.column_volume += t * (base_area + interface_area);
+    if (j > 0) {
+      out.base_fill += t * std::max(0.0, base_area - settings_.fill_inset * outline) * settings_.fill_per_mm3;
+      out.sheath += t * outline * settings_.sheath_per_mm2;
+      out.top_interface += t * interface_area * settings_.interface_per_mm3;
+    } else {
+      out.first_layer = first_layer(map.cell, st.column);
+    }
+    for (int c : st.above) st.column_above[c] = 0;
+    for (int c : st.now) st.column_above[c] = 1;
+    for (int c : st.now) st.column[c] = 0;
+    std::swap(st.above, st.now);
+  }
+  return out;
+}
+
+// The first layer: the columns' free pixels grown by first_layer_expansion in steps that go
+// around the part's first slice (alternately to the 4 and the 8 neighbours: an octagon), filled
+// at the first layer's density, with a sheath.
+double GridSupportSweep::first_layer(const std::vector<int>& cell_of_pixel, const std::vector<std::uint8_t>& column) const {
+  const int nx = grid_.nx, ny = grid_.ny;
+  std::vector<std::uint8_t> region(static_cast<size_t>(grid_.count()), 0);
+  int i0 = nx, i1 = -1, j0 = ny, j1 = -1;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int q = i + nx * j;
+      if (!column[cell_of_pixel[q]] || trimmed_first_[q]) continue;
+      region[q] = 1;
+      i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
+    }
+  if (i1 < 0) return 0.0;
+  const int steps = static_cast<int>(std::lround(settings_.first_layer_expansion / grid_.pixel));
+  std::vector<std::uint8_t> next;
+  for (int step = 0; step < steps; ++step) {
+    i0 = std::max(0, i0 - 1), i1 = std::min(nx - 1, i1 + 1), j0 = std::max(0, j0 - 1), j1 = std::min(ny - 1, j1 + 1);
+    next = region;
+    const bool diagonal = step % 2 == 1;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const int q = i + nx * j;
+        if (region[q] || solid_first_[q]) continue;
+        bool reached = false;
+        for (int dj = -1; dj <= 1 && !reached; ++dj)
+          for (int di = -1; di <= 1 && !reached; ++di) {
+            if ((di == 0 && dj == 0) || (!diagonal && di != 0 && dj != 0)) continue;
+            const int a = i + di, b = j + dj;
+            reached = a >= 0 && b >= 0 && a < nx && b < ny && region[a + nx * b];
+          }
+        next[q] = reached;
+      }
+    region.swap(next);
+  }
+  double area = 0.0, outline = 0.0, along_part = 0.0;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const int q = i + nx * j;
+      if (!region[q]) continue;
+      area += 1.0;
+      const int around[4][2] = {{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}};
+      for (const auto& ab : around) {
+        const bool inside = ab[0] >= 0 && ab[1] >= 0 && ab[0] < nx && ab[1] < ny;
+        const int r = inside ? ab[0] + nx * ab[1] : -1;
+        if (r >= 0 && region[r]) continue;
+        outline += 1.0;
+        if (r >= 0 && solid_first_[r]) along_part += 1.0;
+      }
+    }
+  const double p = grid_.pixel;
+  area = std::max(0.0, area * p * p - settings_.xy_gap * along_part * p * kStaircase);
+  outline *= p * kStaircase;
+  return settings_.first_layer_fill_per_mm2 * std::max(0.0, area - settings_.first_layer_inset * outline) +
+         settings_.first_layer_sheath_per_mm * outline;
+}
+
+}  // namespace slim
