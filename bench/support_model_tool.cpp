@@ -1,8 +1,9 @@
 // support_model_tool: the support model's validation steps (bench/support_model_validate.sh), one
 // subcommand each; "key=value" lines on stdout, a one-line reason and exit 1 on bad input.
 //
-//   support_model_tool estimate MESH [--angle DEG] [--phases N] [--turns N] [--pixels N]
-//       The model's estimate for MESH as printed in its own frame (+Z up), part by part.
+//   support_model_tool estimate MESH [--angle DEG] [--phases N] [--turns N] [--pixels N] [--layers]
+//       The model's estimate for MESH as printed in its own frame (+Z up), part by part (and with
+//       --layers, layer by layer: "layer J MM3").
 //   support_model_tool turn MESH DEG OUT.stl
 //       MESH turned by DEG about +Z through its bounding-box centre, resting on z = 0, as STL:
 //       the same part against another grid angle and phase.
@@ -26,13 +27,22 @@ namespace {
 
 int estimate(int argc, char** argv) {
   slim::SupportModelOptions o;
-  for (int i = 3; i + 1 < argc; i += 2) {
+  bool layers = false;
+  for (int i = 3; i < argc; i += 2) {
     const std::string k = argv[i];
+    if (k == "--layers") {
+      layers = true;
+      --i;
+      continue;
+    }
+    if (i + 1 >= argc) throw std::invalid_argument(k + " needs a value");
     const char* v = argv[i + 1];
     if (k == "--angle") o.alpha_max_deg = std::atof(v);
     else if (k == "--phases") o.grid_phases = std::atoi(v);
     else if (k == "--turns") o.turns = std::atoi(v);
     else if (k == "--pixels") o.pixels_per_cell = std::atoi(v);
+    else if (k == "--creases") o.bottom_creases = std::atoi(v) != 0;
+    else if (k == "--tips") o.lowest_points = std::atoi(v) != 0;
     else throw std::invalid_argument("unknown option " + k);
   }
   const slim::SupportEstimate e = slim::estimate_support(slim::vcgx::load_surface(argv[2]), o);
@@ -42,6 +52,9 @@ int estimate(int argc, char** argv) {
               e.volume_mm3, e.base_fill_mm3, e.sheath_mm3, e.top_interface_mm3, e.bottom_interface_mm3, e.first_layer_mm3,
               e.min_phase_mm3, e.max_phase_mm3, e.contact_area_mm2, e.landing_area_mm2, e.column_volume_mm3, e.pixel_mm,
               e.layers, e.cells);
+  if (layers) {
+    for (size_t j = 0; j < e.layer_mm3.size(); ++j) std::printf("layer %zu %.4f\n", j, e.layer_mm3[j]);
+  }
   return 0;
 }
 
@@ -78,7 +91,7 @@ int main(int argc, char** argv) {
     std::cerr << "support_model_tool: " << e.what() << "\n";
     return 1;
   }
-  std::cerr << "usage: support_model_tool estimate MESH [--angle DEG] [--phases N] [--turns N] [--pixels N]\n"
+  std::cerr << "usage: support_model_tool estimate MESH [--angle DEG] [--phases N] [--turns N] [--pixels N] [--layers]\n"
                "       support_model_tool turn MESH DEG OUT.stl\n"
                "       support_model_tool gcode FILE.gcode\n";
   return 1;

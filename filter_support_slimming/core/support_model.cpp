@@ -23,9 +23,10 @@ void check_options(const SupportModelOptions& o) {
   require(o.print_direction.allFinite() && o.print_direction.norm() > 0, "the print direction must be a non-zero vector");
   require(o.alpha_max_deg > 0 && o.alpha_max_deg < 90, "alpha_max must lie strictly between 0 and 90 degrees");
   require(o.threshold_slack_deg >= 0 && o.threshold_slack_deg < 10, "the threshold slack must lie in [0, 10) degrees");
-  require(o.layer_height > 0 && o.first_layer_height > 0 && o.support_layer_height > 0, "layer heights must be positive");
+  require(o.layer_height > 0 && o.first_layer_height > 0 && o.max_support_layer_height >= o.layer_height,
+          "layer heights must be positive, the support's at least the object's");
   require(o.nozzle_diameter > 0 && o.extrusion_width > 0, "nozzle and extrusion width must be positive");
-  require(o.extrusion_width > o.support_layer_height * (1 - M_PI / 4) && o.extrusion_width > o.layer_height * (1 - M_PI / 4),
+  require(o.extrusion_width > o.max_support_layer_height * (1 - M_PI / 4) && o.extrusion_width > o.first_layer_height * (1 - M_PI / 4),
           "the extrusion width is too small for the layer height");
   require(o.grid_spacing > o.extrusion_width, "the grid spacing must exceed the extrusion width");
   require(o.contact_distance >= 0 && o.xy_gap >= 0 && o.dense_interface_overhang > 0, "gaps must not be negative");
@@ -38,35 +39,19 @@ void check_options(const SupportModelOptions& o) {
   require(o.turns >= 1 && o.turns <= 90, "turns must lie in [1, 90]");
 }
 
-// Extrusion spacing of a line of width w and height t (PrusaSlicer's rounded rectangle): the
-// plastic per mm of line is t times this.
-double line_spacing(double w, double t) { return w - t * (1.0 - M_PI / 4.0); }
-
 GridSweepSettings sweep_settings(const SupportModelOptions& o) {
   GridSweepSettings s;
-  const double at_layer = line_spacing(o.extrusion_width, o.layer_height);
-  const double at_support = line_spacing(o.extrusion_width, o.support_layer_height);
-  const double at_first = line_spacing(o.extrusion_width, o.first_layer_height);
   s.pixels_per_cell = o.pixels_per_cell;
   s.contact_distance = o.contact_distance;
   s.xy_gap = o.xy_gap;
+  s.grid_spacing = o.grid_spacing;
+  s.extrusion_width = o.extrusion_width;
+  s.nozzle_diameter = o.nozzle_diameter;
+  s.max_support_layer_height = o.max_support_layer_height;
+  s.interface_layers = o.interface_layers;
   s.sheath = o.sheath;
-  s.interface_depth = o.interface_layers * o.support_layer_height / o.layer_height;
-  s.fill_per_mm3 = at_support / o.grid_spacing;  // one line per cell, each t × spacing in section
-  s.sheath_per_mm2 = at_support;
-  s.fill_inset = 0.4 * at_layer;
-  s.interface_per_mm3 = at_support / at_layer;   // lines one spacing apart: dense
-  // A landing: a bridging contact layer (round lines of the nozzle's diameter, one spacing apart)
-  // and interface_layers - 1 dense layers, where the base fill would otherwise stand.
-  const double bridge = M_PI / 4.0 * o.nozzle_diameter * o.nozzle_diameter / at_layer;
-  const int below = std::max(0, o.interface_layers - 1);
-  const double dense = below * o.support_layer_height * s.interface_per_mm3;
-  const double replaced = (o.interface_layers > 0 ? o.nozzle_diameter : 0.0) + below * o.support_layer_height;
-  s.bottom_interface_per_mm2 = o.interface_layers > 0 ? std::max(0.0, bridge + dense - replaced * s.fill_per_mm3) : 0.0;
+  s.first_layer_density = o.first_layer_density;
   s.first_layer_expansion = o.first_layer_expansion;
-  s.first_layer_fill_per_mm2 = o.first_layer_density * o.first_layer_height;
-  s.first_layer_sheath_per_mm = o.first_layer_height * at_first;
-  s.first_layer_inset = 0.4 * at_first;
   return s;
 }
 
@@ -121,6 +106,9 @@ SupportEstimate estimate_support(const Surface& surface, const SupportModelOptio
   OverhangRule rule;
   rule.max_slope_deg = 90.0 - o.alpha_max_deg + o.threshold_slack_deg;
   rule.dense_slope_deg = std::atan(o.layer_height / o.dense_interface_overhang) * 180.0 / M_PI;
+  rule.layer_height = o.layer_height;
+  rule.creases = o.bottom_creases;
+  rule.tips = o.lowest_points;
   const ThreadScope threads(o.threads);
   SupportEstimate est;
   std::vector<GridSweepResult> runs;
@@ -155,6 +143,8 @@ SupportEstimate estimate_support(const Surface& surface, const SupportModelOptio
     est.landing_area_mm2 += r.landing_area / n;
     est.column_volume_mm3 += r.column_volume / n;
     est.phase_mm3.push_back(r.total());
+    if (est.layer_mm3.size() < r.layer.size()) est.layer_mm3.resize(r.layer.size(), 0.0);
+    for (size_t j = 0; j < r.layer.size(); ++j) est.layer_mm3[j] += r.layer[j] / n;
     est.min_phase_mm3 = std::min(est.min_phase_mm3, r.total());
     est.max_phase_mm3 = std::max(est.max_phase_mm3, r.total());
   }

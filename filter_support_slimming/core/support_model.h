@@ -81,8 +81,9 @@ struct SupportModelOptions {
   double first_layer_height = 0.2;    // mm
   double nozzle_diameter = 0.4;       // mm
   double extrusion_width = 0.4;       // mm, support lines (PrusaSlicer: the nozzle diameter)
-  double support_layer_height = 0.3;  // mm, the support's own layers (PrusaSlicer: up to 0.75 ×
-                                      // nozzle); sets the flow per height and interface depth
+  double max_support_layer_height = 0.3;  // mm: PrusaSlicer splits the gaps between contacts
+                                      // into support layers up to 0.75 × nozzle thick; their
+                                      // thickness sets the flow per height and interface depth
   double grid_spacing = 2.857;        // mm, support line spacing 2.5 + line spacing 0.357: the
                                       // grid cell
   double contact_distance = 0.2;      // mm, gap between support and overhang (and landing)
@@ -94,6 +95,8 @@ struct SupportModelOptions {
   double first_layer_density = 0.9;   // share of the first layer that is filled
   double first_layer_expansion = 3.0; // mm, the first layer's support grows this much outward
   bool sheath = true;                 // a loop around every island of the base layers
+  bool bottom_creases = true;         // keel ridges and other bottom creases need support
+  bool lowest_points = true;          // a vertex below all its neighbours needs support
   // The model.
   int pixels_per_cell = 4;            // raster pixels along a grid cell, >= 1
   int grid_phases = 4;                // 1, pixels_per_cell or pixels_per_cell²
@@ -115,6 +118,8 @@ struct SupportEstimate {
                                       // layers (phase mean): the footprint
   double landing_area_mm2 = 0.0;      // area where columns land on the part (phase mean)
   double column_volume_mm3 = 0.0;     // volume of the columns' space (area × height, phase mean)
+  std::vector<double> layer_mm3;      // per slicer layer from the plate up (layer_height apart,
+                                      // the first first_layer_height): its share (phase mean)
   double pixel_mm = 0.0;              // raster pixel used
   int layers = 0;                     // slicer layers swept
   int cells = 0;                      // grid cells in x times y

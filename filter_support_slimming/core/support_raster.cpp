@@ -7,6 +7,8 @@
 
 #include <Eigen/Geometry>
 
+#include "core/face_adjacency.h"
+
 namespace slim {
 namespace {
 
@@ -151,7 +153,7 @@ void mark_triangle(const Vec3& a, const Vec3& b, const Vec3& c, bool dense, cons
 
 // Marks every pixel whose square the segment a-b crosses, with the segment's z range inside it
 // (Liang-Barsky clipping of the segment to the square).
-void mark_segment(const Vec3& a, const Vec3& b, const PixelGrid& g, std::vector<PixelOverhang>& out) {
+void mark_segment(const Vec3& a, const Vec3& b, bool dense, const PixelGrid& g, std::vector<PixelOverhang>& out) {
   int i0, i1, j0, j1;
   pixel_range(std::min(a.x(), b.x()), std::max(a.x(), b.x()), g.x0, g.pixel, g.nx, false, i0, i1);
   pixel_range(std::min(a.y(), b.y()), std::max(a.y(), b.y()), g.y0, g.pixel, g.ny, false, j0, j1);
@@ -173,7 +175,7 @@ void mark_segment(const Vec3& a, const Vec3& b, const PixelGrid& g, std::vector<
       }
       if (t0 > t1) continue;
       const double za = a.z() + t0 * d.z(), zb = a.z() + t1 * d.z();
-      out.push_back({i + g.nx * j, std::min(za, zb), std::max(za, zb), true});
+      out.push_back({i + g.nx * j, std::min(za, zb), std::max(za, zb), dense});
     }
   }
 }
@@ -188,20 +190,93 @@ bool rises_from(const Vec3& a, const Vec3& b, const Vec3& c) {
   return c.z() > a.z() + t * (b.z() - a.z());
 }
 
+// How far the slicer sees a convex bottom crease a-b (between faces of outward normals n1, n2)
+// reach beyond the layer below, per unit of layer height. Layer by layer the slice has a corner
+// where the crease meets the layer, the wedge {x : (x - tip)·m_i <= 0} (m_i the faces' outward
+// normals in the plane); one layer up the tip has moved uphill along the crease by
+// layer / tan(crease slope); the reach is the new tip's distance from the old wedge. The slicer
+// sees an overhang when it exceeds layer / tan(max slope), a dense one beyond layer / tan(dense
+// slope). A level crease appears all at once: infinite. 0 when the tip stays inside.
+double crease_reach(const Vec3& a, const Vec3& b, const Vec3& n1, const Vec3& n2) {
+  const Vec2 m1 = n1.head<2>(), m2 = n2.head<2>();
+  if (!(m1.norm() > 0) || !(m2.norm() > 0)) return 0.0;  // a level face: its own rule covers it
+  const Vec3 e = b.z() >= a.z() ? Vec3(b - a) : Vec3(a - b);
+  if (!(e.z() > 0)) return INFINITY;
+  const Vec2 tip = e.head<2>() / e.z();  // one unit of height up the crease
+  const Vec2 w[2] = {m1.normalized(), m2.normalized()};
+  double distance = tip.norm();  // to the old corner
+  for (int i = 0; i < 2; ++i) {
+    const double out = tip.dot(w[i]);
+    const Vec2 foot = tip - out * w[i];  // on the old wedge's side i, if inside the other half-plane
+    if (out > 0 && foot.dot(w[1 - i]) <= 1e-12) distance = std::min(distance, out);
+    if (out <= 0 && tip.dot(w[1 - i]) <= 0) return 0.0;  // the tip stays inside the old slice
+  }
+  return distance;
+}
+
+// Faces less steep than the threshold, kept only in connected regions wide enough for the slicer
+// to see them: layer by layer a region reaches at most its own width beyond the layer below (a lip
+// or fold 0.1 mm wide never passes layer / tan(max slope)). The width of a region is measured as
+// 2 × area / outline of its projection (the width of a strip, the radius of a disc). 1: overhang,
+// 2: dense overhang (the same test against layer / tan(dense slope)), 0: neither.
+std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule) {
+  const int nf = static_cast<int>(s.F.rows());
+  const double cos_max = std::cos(rule.max_slope_deg * M_PI / 180.0), cos_dense = std::cos(rule.dense_slope_deg * M_PI / 180.0);
+  std::vector<char> kind(static_cast<size_t>(nf), 0);
+  std::vector<int> parent(static_cast<size_t>(nf));
+  auto root = [&](int f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  for (int f = 0; f < nf; ++f) {
+    parent[f] = f;
+    const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+    const Vec3 n = (b - a).cross(c - a);
+    const double len = n.norm();
+    const double down = len > 0 ? -n.z() / len : 0.0;  // cos of the slope, for a face looking down
+    kind[f] = down > cos_max ? (down > cos_dense ? 2 : 1) : 0;
+  }
+  for (int f = 0; f < nf; ++f)
+    for (int k = 0; k < 3 && kind[f]; ++k) {
+      const int g = adj.across[3 * f + k];
+      if (g >= 0 && kind[g]) parent[root(f)] = root(g);  // deterministic: no ranks, fixed order
+    }
+  std::vector<double> area(static_cast<size_t>(nf), 0.0), outline(static_cast<size_t>(nf), 0.0);
+  for (int f = 0; f < nf; ++f) {
+    if (!kind[f]) continue;
+    const int r = root(f);
+    const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+    area[r] += 0.5 * std::abs(cross2((b - a).head<2>(), (c - a).head<2>()));
+    for (int k = 0; k < 3; ++k) {
+      const int g = adj.across[3 * f + k];
+      if (g < 0 || !kind[g])
+        outline[r] += (s.V.row(s.F(f, (k + 1) % 3)) - s.V.row(s.F(f, k))).head<2>().norm();
+    }
+  }
+  const double reach = rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0);
+  const double reach_dense = rule.layer_height / std::tan(rule.dense_slope_deg * M_PI / 180.0);
+  for (int f = 0; f < nf; ++f) {
+    if (!kind[f]) continue;
+    const int r = root(f);
+    const double width = outline[r] > 0 ? 2.0 * area[r] / outline[r] : INFINITY;
+    kind[f] = width > reach ? (kind[f] == 2 && width > reach_dense ? 2 : 1) : 0;
+  }
+  return kind;
+}
+
 // Bottom creases and lowest vertices: the first slice of a keel or a tip is an island with nothing
 // below it, which slicers support whatever the slope of the faces around it. The faces around each
 // vertex (counting sort, no hashing) give every edge's other face.
-void mark_creases_and_tips(const Surface& s, double cos_max_slope, const PixelGrid& g, std::vector<PixelOverhang>& out) {
+void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule, const PixelGrid& g,
+                           std::vector<PixelOverhang>& out) {
+  const double cos_max_slope = std::cos(rule.max_slope_deg * M_PI / 180.0);
+  const double reach_overhang = 1.0 / std::tan(rule.max_slope_deg * M_PI / 180.0);
+  const double reach_dense = 1.0 / std::tan(rule.dense_slope_deg * M_PI / 180.0);
   const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows());
-  std::vector<int> begin(static_cast<size_t>(nv) + 1, 0), around(static_cast<size_t>(3) * nf);
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) ++begin[s.F(f, k) + 1];
-  for (int v = 0; v < nv; ++v) begin[v + 1] += begin[v];
-  std::vector<int> fill(begin.begin(), begin.end() - 1);
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) around[fill[s.F(f, k)]++] = f;
+  const std::vector<int>& begin = adj.vertex_begin;
+  const std::vector<int>& around = adj.vertex_face;
   auto vertex = [&](int v) -> Vec3 { return s.V.row(v).transpose(); };
-  for (int f = 0; f < nf; ++f) {
+  for (int f = 0; f < nf && rule.creases; ++f) {
     for (int k = 0; k < 3; ++k) {
       const int u = s.F(f, k), v = s.F(f, (k + 1) % 3), w = s.F(f, (k + 2) % 3);
       const Vec3 a = vertex(u), b = vertex(v), c = vertex(w), e = b - a;
@@ -209,22 +284,20 @@ void mark_creases_and_tips(const Surface& s, double cos_max_slope, const PixelGr
       // The edge less steep than the threshold (cos of its slope = |e.xy| / |e| > cos(max slope)),
       // and this face rising away from it.
       if (!(len > 0) || !(e.head<2>().norm() / len > cos_max_slope) || !rises_from(a, b, c)) continue;
-      int twin = -1, x = -1, seen = 0;
-      for (int i = begin[u]; i < begin[u + 1]; ++i) {
-        const int h = around[i];
-        for (int m = 0; m < 3; ++m)
-          if (s.F(h, m) == v && s.F(h, (m + 1) % 3) == u) twin = h, x = s.F(h, (m + 2) % 3), ++seen;
-        for (int m = 0; m < 3 && h != f; ++m)
-          if (s.F(h, m) == u && s.F(h, (m + 1) % 3) == v) seen += 2;  // a third face: not manifold
-      }
-      // Once per edge (from its lower face index), manifold, the twin rising too, and convex: the
-      // twin's third vertex behind this face's plane.
-      if (seen != 1 || twin < f) continue;
-      const Vec3 d = vertex(x);
-      if (rises_from(b, a, d) && (b - a).cross(c - a).dot(d - a) < 0) mark_segment(a, b, g, out);
+      // Once per edge (from its lower face index), manifold, the other face rising too, and convex:
+      // the other face's third vertex behind this face's plane.
+      const int twin = adj.across[3 * f + k];
+      if (twin < f) continue;
+      int x = -1;
+      for (int m = 0; m < 3; ++m)
+        if (s.F(twin, m) != u && s.F(twin, m) != v) x = s.F(twin, m);
+      const Vec3 d = vertex(x), n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
+      if (!rises_from(b, a, d) || !(n1.dot(d - a) < 0)) continue;
+      const double reach = crease_reach(a, b, n1, n2);
+      if (reach > reach_overhang) mark_segment(a, b, reach > reach_dense, g, out);
     }
   }
-  for (int v = 0; v < nv; ++v) {
+  for (int v = 0; v < nv && rule.tips; ++v) {
     if (begin[v + 1] - begin[v] < 3) continue;
     double lowest = INFINITY;
     for (int i = begin[v]; i < begin[v + 1]; ++i)
@@ -246,17 +319,11 @@ SupportRaster build_support_raster(const Surface& s, const PixelGrid& g, const O
   SupportRaster out;
   out.grid = g;
   rasterize_solid(s, g, out);
-  const double cos_max = std::cos(rule.max_slope_deg * M_PI / 180.0);
-  const double cos_dense = std::cos(rule.dense_slope_deg * M_PI / 180.0);
-  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
-    const Vec3 a = s.V.row(s.F(f, 0)).transpose(), b = s.V.row(s.F(f, 1)).transpose(), c = s.V.row(s.F(f, 2)).transpose();
-    const Vec3 n = (b - a).cross(c - a);
-    const double len = n.norm();
-    if (!(len > 0)) continue;
-    const double down = -n.z() / len;  // cos of the slope from the horizontal, for a face looking down
-    if (down > cos_max) mark_triangle(a, b, c, down > cos_dense, g, out.overhangs);
-  }
-  mark_creases_and_tips(s, cos_max, g, out.overhangs);
+  const FaceAdjacency adj = face_adjacency(s);
+  const std::vector<char> kind = overhanging_faces(s, adj, rule);
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f)
+    if (kind[f]) mark_triangle(s.V.row(s.F(f, 0)), s.V.row(s.F(f, 1)), s.V.row(s.F(f, 2)), kind[f] == 2, g, out.overhangs);
+  mark_creases_and_tips(s, adj, rule, g, out.overhangs);
   sort_by_pixel(out.overhangs, g.count(), [](const PixelOverhang& x, const PixelOverhang& y) {
     if (x.z_low != y.z_low) return x.z_low < y.z_low;
     if (x.z_high != y.z_high) return x.z_high < y.z_high;

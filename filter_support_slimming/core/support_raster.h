@@ -19,7 +19,9 @@
 //             a whole grid cell is exact), the z range of the feature over the pixel and
 //             whether it wants a dense interface. Features:
 //               - a face less steep than rule.max_slope_deg (dense when less steep than
-//                 rule.dense_slope_deg);
+//                 rule.dense_slope_deg), in a connected region of such faces wider than what the
+//                 slicer sees from one layer to the next (layer_height / tan(slope)): a lip or
+//                 fold narrower than that never reaches that far beyond the layer below;
 //               - a bottom crease: an edge whose two faces both rise away from it, convex, with
 //                 the edge itself less steep than max_slope_deg (the first slice of a keel is a
 //                 thin island with nothing below it); dense;
@@ -46,6 +48,10 @@ struct PixelGrid {
 struct OverhangRule {
   double max_slope_deg = 46.0;    // features less steep than this (from the horizontal) overhang
   double dense_slope_deg = 36.5;  // overhangs less steep than this want a dense interface
+  double layer_height = 0.2;      // mm: a region of overhanging faces narrower than
+                                  // layer_height / tan(max_slope_deg) is not seen by the slicer
+  bool creases = true;            // bottom creases overhang (keels)
+  bool tips = true;               // lowest vertices overhang
 };
 
 struct SolidSpan {

@@ -70,11 +70,49 @@ void add_range(std::vector<RawEvent>& raw, int pixel, const Range& r, GridSuppor
 
 }  // namespace
 
+SweepRates sweep_rates(const GridSweepSettings& s, const SlicerLayers& layers, double t) {
+  auto spacing = [&](double height) { return s.extrusion_width - height * (1.0 - M_PI / 4.0); };
+  const double at_t = spacing(t), at_layer = spacing(layers.height), at_first = spacing(layers.first_height);
+  SweepRates r;
+  r.fill_per_mm3 = at_t / s.grid_spacing;  // one line per cell
+  r.sheath_per_mm2 = at_t;
+  r.fill_inset = 0.4 * at_layer;
+  r.interface_per_mm3 = at_t / at_layer;   // dense: one line per line spacing
+  r.interface_depth = s.interface_layers * t / layers.height;
+  // A landing: a bridging contact layer (round lines of the nozzle's diameter, a line spacing
+  // apart) and interface_layers - 1 dense layers, where the fill would stand otherwise.
+  if (s.interface_layers > 0) {
+    const double bridge = M_PI / 4.0 * s.nozzle_diameter * s.nozzle_diameter / at_layer;
+    const double below = s.interface_layers - 1.0;
+    r.bottom_interface_per_mm2 =
+        std::max(0.0, bridge + below * t * r.interface_per_mm3 - (s.nozzle_diameter + below * t) * r.fill_per_mm3);
+  }
+  r.first_fill_per_mm2 = s.first_layer_density * layers.first_height;
+  r.first_sheath_per_mm = layers.first_height * at_first;
+  r.first_inset = 0.4 * at_first;
+  return r;
+}
+
+std::vector<double> support_layer_thickness(const std::vector<char>& has_contact, const SlicerLayers& layers, double max_height) {
+  const int count = layers.count;
+  std::vector<double> out(static_cast<size_t>(count), layers.height);
+  if (count > 0) out[0] = layers.first_height;
+  int below = 0;  // the layer whose top the current gap starts from
+  for (int j = 1; j < count; ++j) {
+    if (!has_contact[j]) continue;
+    const double gap = layers.print_z(j) - layers.print_z(below);
+    const double step = gap / std::max(1.0, std::ceil(gap / max_height - 1e-9));
+    for (int i = below + 1; i <= j; ++i) out[i] = step;
+    below = j;
+  }
+  return out;
+}
+
 // Per pixel, in object layers: what the part fills, what trims a support layer there (the part
 // within contact_distance above or below), what blocks the projection (filled at j or j + 1), the
 // part's top layers, and the contacts (the support layer under each overhang).
 void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<RawEvent>& raw, std::vector<int>& trim_begin,
-                                    std::vector<std::pair<int, int>>& trims) {
+                                    std::vector<std::pair<int, int>>& trims, std::vector<char>& has_contact) {
   const SlicerLayers& L = layers_;
   const int n = grid_.count(), count = L.count;
   const int reach = static_cast<int>(std::ceil(settings_.contact_distance / L.height - 1e-9));
@@ -111,7 +149,10 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
     for (const Range& x : trim) add_range(raw, p, x, kTrim);
     trims.insert(trims.end(), trim.begin(), trim.end());
     for (const Range& x : block) add_range(raw, p, x, kBlock);
-    for (const Range& x : contact) add_range(raw, p, x, kContact);
+    for (const Range& x : contact) {
+      add_range(raw, p, x, kContact);
+      for (int j = x.first; j <= x.second; ++j) has_contact[j] = 1;
+    }
     for (const Range& x : dense) add_range(raw, p, x, kDense);
   }
   trim_begin[n] = static_cast<int>(trims.size());
@@ -145,10 +186,13 @@ GridSupportSweep::GridSupportSweep(const SupportRaster& raster, const SlicerLaye
   solid_first_.assign(static_cast<size_t>(n), 0);
   trimmed_first_.assign(static_cast<size_t>(n), 0);
   std::vector<RawEvent> raw;
-  raw.reserve(static_cast<size_t>(8) * raster.spans.size() + 4 * raster.overhangs.size());
+  raw.reserve(static_cast<size_t>(24) * raster.spans.size() + 4 * raster.overhangs.size());
   std::vector<int> trim_begin;
   std::vector<Range> trims;
-  pixel_events(raster, raw, trim_begin, trims);
+  std::vector<char> has_contact(static_cast<size_t>(count), 0);
+  pixel_events(raster, raw, trim_begin, trims, has_contact);
+  for (double t : support_layer_thickness(has_contact, layers, settings.max_support_layer_height))
+    rates_.push_back(sweep_rates(settings, layers, t));
   outline_events(trim_begin, trims, raw);
   // Counting sort by layer, keeping each layer's events in the order they were made.
   event_begin_.assign(static_cast<size_t>(count) + 1, 0);
@@ -188,29 +232,33 @@ struct CellMap {
 // The counters of one phase's cells at the current layer and the columns of the layer above.
 struct PhaseState {
   int per_cell;
-  std::vector<int> count[GridSupportSweep::kKinds];
-  std::vector<int> side_trimmed[4];
-  std::vector<std::uint8_t> column_above, listed_contact, column;
+  struct Counters {
+    int kind[GridSupportSweep::kKinds];
+    int side_trimmed[4];  // trimmed pixels along each side (-x, +x, -y, +y)
+  };
+  std::vector<Counters> count;  // per cell
+  std::vector<std::uint8_t> column_above, listed_contact;
   std::vector<int> dense_distance, seen, state_layer;
-  std::vector<double> interface_weight;
+  std::vector<double> interface_weight, dense_depth;
   std::vector<int> above, now, contacts;
   PhaseState(int cells, int per_cell_) : per_cell(per_cell_) {
-    for (auto& c : count) c.assign(static_cast<size_t>(cells), 0);
-    for (auto& c : side_trimmed) c.assign(static_cast<size_t>(cells), 0);
+    count.assign(static_cast<size_t>(cells), Counters{});
     column_above.assign(static_cast<size_t>(cells), 0);
-    column = listed_contact = column_above;
+    listed_contact = column_above;
     dense_distance.assign(static_cast<size_t>(cells), kNoDense);
     seen.assign(static_cast<size_t>(cells), -1);
     state_layer = seen;
     interface_weight.assign(static_cast<size_t>(cells), 0.0);
+    dense_depth = interface_weight;
   }
   void apply(const GridSupportSweep::Event& e, const CellMap& map) {
     const int c = map.cell[e.pixel];
-    count[e.kind][c] += e.delta;
-    if (e.kind == GridSupportSweep::kTrim)
+    Counters& k = count[c];
+    k.kind[e.kind] += e.delta;
+    if (e.kind == GridSupportSweep::kTrim && map.sides[e.pixel])
       for (int s = 0; s < 4; ++s)
-        if (map.sides[e.pixel] >> s & 1) side_trimmed[s][c] += e.delta;
-    if (e.kind == GridSupportSweep::kContact && count[e.kind][c] > 0 && !listed_contact[c]) {
+        if (map.sides[e.pixel] >> s & 1) k.side_trimmed[s] += e.delta;
+    if (e.kind == GridSupportSweep::kContact && k.kind[e.kind] > 0 && !listed_contact[c]) {
       listed_contact[c] = 1;
       contacts.push_back(c);
     }
@@ -228,8 +276,10 @@ GridSweepResult GridSupportSweep::run(int ox, int oy) const {
   const double p = grid_.pixel, p2 = p * p, full = static_cast<double>(S) * S;
   const int neighbour[4] = {-1, 1, -map.cx, map.cx};
   GridSweepResult out;
+  out.layer.assign(static_cast<size_t>(layers_.count), 0.0);
   for (int j = top_layer_; j >= 0; --j) {
     for (int e = event_begin_[j]; e < event_begin_[j + 1]; ++e) st.apply(events_[e], map);
+    const SweepRates& rate = rates_[j];
     // Columns at j: contacts here, and columns above whose projection passes.
     st.now.clear();
     double landing = 0.0;
@@ -237,19 +287,23 @@ GridSweepResult GridSupportSweep::run(int ox, int oy) const {
       if (st.seen[c] == j) return;
       st.seen[c] = j;
       const bool above = st.column_above[c] != 0;
-      if (above) landing += st.count[kTop][c] * p2;
-      const bool contact = st.count[kContact][c] > 0;
-      if (!contact && !(above && st.count[kBlock][c] < full)) return;
-      st.column[c] = 1;
+      if (above) landing += st.count[c].kind[kTop] * p2;
+      const bool contact = st.count[c].kind[kContact] > 0;
+      if (!contact && !(above && st.count[c].kind[kBlock] < full)) return;
       st.now.push_back(c);
-      st.dense_distance[c] = st.count[kDense][c] > 0 ? 0 : (above ? std::min(kNoDense, st.dense_distance[c] + 1) : kNoDense);
-      st.interface_weight[c] = std::clamp(settings_.interface_depth - st.dense_distance[c], 0.0, 1.0);
+      if (st.count[c].kind[kDense] > 0) {
+        st.dense_distance[c] = 0;
+        st.dense_depth[c] = rate.interface_depth;
+      } else {
+        st.dense_distance[c] = above ? std::min(kNoDense, st.dense_distance[c] + 1) : kNoDense;
+      }
+      st.interface_weight[c] = std::clamp(st.dense_depth[c] - st.dense_distance[c], 0.0, 1.0);
       st.state_layer[c] = j;
     };
     for (int c : st.above) consider(c);
     size_t kept = 0;
     for (int c : st.contacts) {
-      if (st.count[kContact][c] <= 0) {
+      if (st.count[c].kind[kContact] <= 0) {
         st.listed_contact[c] = 0;
         continue;
       }
@@ -258,35 +312,39 @@ GridSweepResult GridSupportSweep::run(int ox, int oy) const {
     }
     st.contacts.resize(kept);
     out.landing_area += landing;
-    out.bottom_interface += landing * settings_.bottom_interface_per_mm2;
+    out.bottom_interface += landing * rate.bottom_interface_per_mm2;
+    out.layer[j] += landing * rate.bottom_interface_per_mm2;
     // Areas, the sheath of the base islands, material.
     double base_area = 0.0, interface_area = 0.0, outline = 0.0;
     for (int c : st.now) {
-      const double area = std::max(0.0, (full - st.count[kTrim][c]) * p2 - settings_.xy_gap * st.count[kOutline][c] * p * kStaircase);
+      const double area = std::max(0.0, (full - st.count[c].kind[kTrim]) * p2 - settings_.xy_gap * st.count[c].kind[kOutline] * p * kStaircase);
       const double w = st.interface_weight[c];
       base_area += (1.0 - w) * area;
       interface_area += w * area;
-      if (st.count[kContact][c] > 0) out.contact_area += area;
+      if (st.count[c].kind[kContact] > 0) out.contact_area += area;
       if (!settings_.sheath || w >= 0.5) continue;
-      outline += st.count[kOutline][c] * p * kStaircase;
+      outline += st.count[c].kind[kOutline] * p * kStaircase;
       for (int s = 0; s < 4; ++s) {
         const int n = c + neighbour[s];
         const bool base_neighbour = n >= 0 && n < cells && st.state_layer[n] == j && st.interface_weight[n] < 0.5;
-        if (!base_neighbour) outline += (S - st.side_trimmed[s][c]) * p;
+        if (!base_neighbour) outline += (S - st.count[c].side_trimmed[s]) * p;
       }
     }
     const double t = layers_.thickness(j);
     out.column_volume += t * (base_area + interface_area);
     if (j > 0) {
-      out.base_fill += t * std::max(0.0, base_area - settings_.fill_inset * outline) * settings_.fill_per_mm3;
-      out.sheath += t * outline * settings_.sheath_per_mm2;
-      out.top_interface += t * interface_area * settings_.interface_per_mm3;
+      const double fill = t * std::max(0.0, base_area - rate.fill_inset * outline) * rate.fill_per_mm3;
+      const double sheath = t * outline * rate.sheath_per_mm2, dense = t * interface_area * rate.interface_per_mm3;
+      out.base_fill += fill;
+      out.sheath += sheath;
+      out.top_interface += dense;
+      out.layer[j] += fill + sheath + dense;
     } else {
-      out.first_layer = first_layer(map.cell, st.column);
+      out.first_layer = first_layer(st.now, map.cx, ox, oy);
+      out.layer[0] += out.first_layer;
     }
     for (int c : st.above) st.column_above[c] = 0;
     for (int c : st.now) st.column_above[c] = 1;
-    for (int c : st.now) st.column[c] = 0;
     std::swap(st.above, st.now);
   }
   return out;
@@ -295,17 +353,20 @@ GridSweepResult GridSupportSweep::run(int ox, int oy) const {
 // The first layer: the columns' free pixels grown by first_layer_expansion in steps that go
 // around the part's first slice (alternately to the 4 and the 8 neighbours: an octagon), filled
 // at the first layer's density, with a sheath.
-double GridSupportSweep::first_layer(const std::vector<int>& cell_of_pixel, const std::vector<std::uint8_t>& column) const {
-  const int nx = grid_.nx, ny = grid_.ny;
+double GridSupportSweep::first_layer(const std::vector<int>& columns, int cells_x, int ox, int oy) const {
+  const int nx = grid_.nx, ny = grid_.ny, S = settings_.pixels_per_cell;
   std::vector<std::uint8_t> region(static_cast<size_t>(grid_.count()), 0);
   int i0 = nx, i1 = -1, j0 = ny, j1 = -1;
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const int q = i + nx * j;
-      if (!column[cell_of_pixel[q]] || trimmed_first_[q]) continue;
-      region[q] = 1;
-      i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
-    }
+  for (int c : columns) {  // the pixels of cell c: i + S - ox in [ci·S, ci·S + S)
+    const int ci = c % cells_x, cj = c / cells_x;
+    for (int j = std::max(0, cj * S - S + oy); j < std::min(ny, cj * S + oy); ++j)
+      for (int i = std::max(0, ci * S - S + ox); i < std::min(nx, ci * S + ox); ++i) {
+        const int q = i + nx * j;
+        if (trimmed_first_[q]) continue;
+        region[q] = 1;
+        i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
+      }
+  }
   if (i1 < 0) return 0.0;
   const int steps = static_cast<int>(std::lround(settings_.first_layer_expansion / grid_.pixel));
   std::vector<std::uint8_t> next;
@@ -346,8 +407,8 @@ double GridSupportSweep::first_layer(const std::vector<int>& cell_of_pixel, cons
   const double p = grid_.pixel;
   area = std::max(0.0, area * p * p - settings_.xy_gap * along_part * p * kStaircase);
   outline *= p * kStaircase;
-  return settings_.first_layer_fill_per_mm2 * std::max(0.0, area - settings_.first_layer_inset * outline) +
-         settings_.first_layer_sheath_per_mm * outline;
+  const SweepRates& rate = rates_[0];
+  return rate.first_fill_per_mm2 * std::max(0.0, area - rate.first_inset * outline) + rate.first_sheath_per_mm * outline;
 }
 
 }  // namespace slim

@@ -19,7 +19,10 @@
 //     is free of the part in both object layers j and j + 1 (the projection passes);
 //   - a column's area at j: its pixels free of the part in object layers j - g .. j + g (g the
 //     layers within contact_distance), less xy_gap along the part's outline there;
-//   - cells within interface_depth layers below a dense contact are interface, the rest base; the
+//   - support layers: PrusaSlicer splits each gap between contact layers into equal layers of at
+//     most max_support_layer_height; their thickness sets the flow per height and the depth of the
+//     interface_layers dense layers;
+//   - cells within that depth below a dense contact are interface, the rest base; the
 //     base islands get a sheath along their outline (cell sides facing non-base cells, and the
 //     part's outline inside them); pixels where a column meets the part's top get a bottom
 //     interface;
@@ -51,25 +54,42 @@ struct SlicerLayers {
 
 struct GridSweepSettings {
   int pixels_per_cell = 4;
-  double contact_distance = 0.2;      // mm
-  double xy_gap = 0.225;              // mm
-  double interface_depth = 4.5;       // support layers of top interface under a dense contact
+  double contact_distance = 0.2;          // mm, between support and overhang or landing
+  double xy_gap = 0.225;                  // mm, between support and the part's side
+  double grid_spacing = 2.857;            // mm, the cell (the support lines' spacing)
+  double extrusion_width = 0.4;           // mm, support lines
+  double nozzle_diameter = 0.4;           // mm, the bridging lines of a landing
+  double max_support_layer_height = 0.3;  // mm, the support's own layers between contacts
+  int interface_layers = 3;
   bool sheath = true;
-  // Material, mm³ per unit:
-  double fill_per_mm3 = 0.118;        // base fill per mm² of column and mm of height
-  double sheath_per_mm2 = 0.336;      // sheath per mm of outline and mm of height
-  double fill_inset = 0.143;          // mm: the fill stays this far inside the sheath
-  double interface_per_mm3 = 0.94;    // top interface per mm² and mm of height
-  double bottom_interface_per_mm2 = 0.8;  // bottom contact and interface per mm² of landing
+  double first_layer_density = 0.9;
   double first_layer_expansion = 3.0;     // mm
-  double first_layer_fill_per_mm2 = 0.18;   // first layer fill per mm² (its height included)
-  double first_layer_sheath_per_mm = 0.0714;  // first layer sheath per mm of outline
-  double first_layer_inset = 0.143;          // mm
 };
+
+// The material of one support layer of thickness t, per unit (mm³ per mm² of area and mm of
+// height, or per mm of outline and mm of height): lines of width w are t × (w - t(1 - pi/4)) in
+// section (PrusaSlicer's rounded rectangle), the fill one grid cell apart, the interfaces one line
+// spacing (at the object's layer height) apart.
+struct SweepRates {
+  double fill_per_mm3 = 0.0, sheath_per_mm2 = 0.0, fill_inset = 0.0, interface_per_mm3 = 0.0;
+  double bottom_interface_per_mm2 = 0.0;  // a landing: bridging contact and dense layers, less the
+                                          // fill they replace
+  double interface_depth = 0.0;           // object layers of top interface under a dense contact
+  double first_fill_per_mm2 = 0.0, first_sheath_per_mm = 0.0, first_inset = 0.0;  // layer 0
+};
+SweepRates sweep_rates(const GridSweepSettings& s, const SlicerLayers& layers, double thickness);
+
+// PrusaSlicer's support layers: between consecutive contact layers (and from the first layer up to
+// the lowest) the gap is split into equal layers no thicker than max_height. Returns, per object
+// layer j, the thickness of the support layer printed there (the first layer's for j = 0, the
+// object's layer height above the highest contact). has_contact: per object layer, whether any
+// contact lies there.
+std::vector<double> support_layer_thickness(const std::vector<char>& has_contact, const SlicerLayers& layers, double max_height);
 
 struct GridSweepResult {
   double base_fill = 0.0, sheath = 0.0, top_interface = 0.0, bottom_interface = 0.0, first_layer = 0.0;
   double contact_area = 0.0, landing_area = 0.0, column_volume = 0.0;
+  std::vector<double> layer;  // per support layer: all its material (landings at the layer below)
   double total() const { return base_fill + sheath + top_interface + bottom_interface + first_layer; }
 };
 
@@ -91,10 +111,10 @@ class GridSupportSweep {
 
  private:
   void pixel_events(const SupportRaster& raster, std::vector<RawEvent>& raw, std::vector<int>& trim_begin,
-                    std::vector<std::pair<int, int>>& trims);
+                    std::vector<std::pair<int, int>>& trims, std::vector<char>& has_contact);
   void outline_events(const std::vector<int>& trim_begin, const std::vector<std::pair<int, int>>& trims,
                       std::vector<RawEvent>& raw) const;
-  double first_layer(const std::vector<int>& cell_of_pixel, const std::vector<std::uint8_t>& column) const;
+  double first_layer(const std::vector<int>& columns, int cells_x, int offset_x, int offset_y) const;
 
   PixelGrid grid_;
   SlicerLayers layers_;
@@ -103,6 +123,7 @@ class GridSupportSweep {
   std::vector<Event> events_;
   std::vector<std::uint8_t> solid_first_;    // per pixel: the part fills it in the first layer
   std::vector<std::uint8_t> trimmed_first_;  // per pixel: the part is within reach of layer 0
+  std::vector<SweepRates> rates_;            // per object layer
   int top_layer_ = -1;                       // highest layer with any event
 };
 

@@ -111,8 +111,8 @@ Voxels voxels(const SupportRaster& r, const SlicerLayers& L, const GridSweepSett
 
 // The first layer by its definition: columns' free pixels, grown in alternating 4- and
 // 8-neighbour steps around the part's first slice.
-double first_layer(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, const std::vector<int>& cell,
-                   const std::vector<char>& column) {
+double first_layer(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, const SweepRates& rate,
+                   const std::vector<int>& cell, const std::vector<char>& column) {
   std::vector<char> region(static_cast<size_t>(v.n), 0);
   for (int p = 0; p < v.n; ++p) region[p] = column[cell[p]] && !v.at(v.trim, p, 0);
   const int steps = static_cast<int>(std::lround(s.first_layer_expansion / g.pixel));
@@ -146,7 +146,7 @@ double first_layer(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, co
   }
   area = std::max(0.0, area * g.pixel * g.pixel - s.xy_gap * along * g.pixel * kStaircase);
   outline *= g.pixel * kStaircase;
-  return s.first_layer_fill_per_mm2 * std::max(0.0, area - s.first_layer_inset * outline) + s.first_layer_sheath_per_mm * outline;
+  return rate.first_fill_per_mm2 * std::max(0.0, area - rate.first_inset * outline) + rate.first_sheath_per_mm * outline;
 }
 
 }  // namespace
@@ -162,8 +162,13 @@ GridSweepResult reference_sweep(const SupportRaster& r, const SlicerLayers& L, c
     members[cell[p]].push_back(p);
   }
   const double px = g.pixel, p2 = px * px;
+  std::vector<char> has_contact(static_cast<size_t>(L.count), 0);
+  for (int p = 0; p < v.n; ++p)
+    for (int j = 0; j < L.count; ++j) has_contact[j] |= v.at(v.contact, p, j);
+  std::vector<SweepRates> rates;
+  for (double t : support_layer_thickness(has_contact, L, s.max_support_layer_height)) rates.push_back(sweep_rates(s, L, t));
   std::vector<char> above(static_cast<size_t>(cells), 0), now(static_cast<size_t>(cells), 0);
-  std::vector<double> dense(static_cast<size_t>(cells), 1e9), weight(static_cast<size_t>(cells), 0);
+  std::vector<double> dense(static_cast<size_t>(cells), 1e9), depth(static_cast<size_t>(cells), 0), weight(dense.size(), 0);
   GridSweepResult out;
   for (int j = L.count - 1; j >= 0; --j) {
     for (int c = 0; c < cells; ++c) {
@@ -175,10 +180,14 @@ GridSweepResult reference_sweep(const SupportRaster& r, const SlicerLayers& L, c
         pass |= !v.at(v.block, p, j);
         tops += v.at(v.top, p, j);
       }
-      if (above[c]) out.landing_area += tops * p2;
+      if (above[c]) {
+        out.landing_area += tops * p2;
+        out.bottom_interface += tops * p2 * rates[j].bottom_interface_per_mm2;
+      }
       now[c] = contact || (above[c] && pass);
       dense[c] = !now[c] ? 1e9 : has_dense ? 0 : above[c] ? dense[c] + 1 : 1e9;
-      weight[c] = std::clamp(s.interface_depth - dense[c], 0.0, 1.0);
+      if (now[c] && has_dense) depth[c] = rates[j].interface_depth;
+      weight[c] = std::clamp(depth[c] - dense[c], 0.0, 1.0);
     }
     double base = 0, iface = 0, outline = 0;
     for (int c = 0; c < cells; ++c) {
@@ -212,16 +221,16 @@ GridSweepResult reference_sweep(const SupportRaster& r, const SlicerLayers& L, c
     }
     const double t = L.thickness(j);
     out.column_volume += t * (base + iface);
+    const SweepRates& r = rates[j];
     if (j > 0) {
-      out.base_fill += t * std::max(0.0, base - s.fill_inset * outline) * s.fill_per_mm3;
-      out.sheath += t * outline * s.sheath_per_mm2;
-      out.top_interface += t * iface * s.interface_per_mm3;
+      out.base_fill += t * std::max(0.0, base - r.fill_inset * outline) * r.fill_per_mm3;
+      out.sheath += t * outline * r.sheath_per_mm2;
+      out.top_interface += t * iface * r.interface_per_mm3;
     } else {
-      out.first_layer = first_layer(v, g, s, cell, now);
+      out.first_layer = first_layer(v, g, s, rates[0], cell, now);
     }
     above = now;
   }
-  out.bottom_interface = out.landing_area * s.bottom_interface_per_mm2;
   return out;
 }
 
