@@ -3,6 +3,8 @@
 #  1. Debian packages for building, testing and running the plugin.
 #  2. MeshLab 2020.09 sources (headers + vcglib) from Debian's source package -> third_party/ (ignored).
 #  3. The sample bunny from the npm package `bunny`, turned +Z up -> data/bunny.ply (ignored).
+#  4. CuraEngine's printer definitions (fdmprinter/fdmextruder.def.json) from Debian's `cura`
+#     package, unpacked (not installed) -> /var/cache/support-slimming/cura/definitions.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
@@ -18,7 +20,7 @@ PACKAGES=(
   libsuitesparse-dev libopenblas0-pthread
   libtet1.5-dev
   meshlab xvfb xauth
-  prusa-slicer f3d imagemagick xdotool
+  prusa-slicer cura-engine f3d imagemagick xdotool
   clang libclang-rt-14-dev libomp-14-dev
 )
 # Node.js only for fetching the npm sample data; keep whatever node the machine already has.
@@ -69,5 +71,18 @@ if [ ! -f "$DATA/bunny.ply" ]; then
   fi
   node "$here/scripts/bunny_to_ply.js" "$DATA/npm/node_modules/bunny" "$DATA/bunny.ply"
   echo "[setup] sample mesh: $DATA/bunny.ply"
+fi
+# --- CuraEngine's definitions: only in the `cura` front end's package, which is not installed --
+CURA_DEFS=/var/cache/support-slimming/cura/definitions
+if [ ! -f "$CURA_DEFS/fdmprinter.def.json" ] || [ ! -f "$CURA_DEFS/fdmextruder.def.json" ]; then
+  tmp="$(mktemp -d)"
+  chmod 755 "$tmp"  # apt's download user must be able to write there
+  (cd "$tmp" && apt-get download -qq cura >/dev/null 2>&1) || { $SUDO apt-get update -qq; (cd "$tmp" && apt-get download -qq cura >/dev/null); }
+  dpkg-deb -x "$tmp"/cura_*.deb "$tmp/x"
+  $SUDO mkdir -p "$CURA_DEFS"
+  $SUDO cp "$tmp/x/usr/share/cura/resources/definitions/fdmprinter.def.json" \
+           "$tmp/x/usr/share/cura/resources/definitions/fdmextruder.def.json" "$CURA_DEFS/"
+  rm -rf "$tmp"
+  echo "[setup] Cura definitions in $CURA_DEFS"
 fi
 echo "[setup] ok"

@@ -6,14 +6,20 @@
 #  1. The part in the print frame (print direction turned onto +Z), scaled so its longest side
 #     is --size mm (default 60), resting on the plate (slim-eval prepare).
 #  2. Support Slimming on it (the support-slim CLI, the same core as the MeshLab filter).
-#  3. Input and result sliced by PrusaSlicer under identical settings, automatic supports with
-#     the threshold matching alpha_max (90 - alpha_max: the slicer measures from the horizontal).
-#  4. The support filament summed from the G-code's "Support material (interface)" sections,
-#     checked against the slicer's own total (slim-eval gcode).
+#  3. Input and result sliced by PrusaSlicer and by CuraEngine under identical settings,
+#     automatic supports at alpha_max (tools/slice_support.sh), each at 4 quarter turns about the
+#     print axis: the slicers' support grid follows the part's bounding box, so a single run
+#     jitters by several percent with the grid's phase; every support figure is the mean.
+#  4. The support filament summed from the G-code's support sections (slim-eval gcode), checked
+#     against PrusaSlicer's own total.
 #  5. Shape change: symmetric Hausdorff and mean distance from MeshLab's "Hausdorff Distance"
-#     filter (meshlabserver, both directions), volume change, largest vertex displacement.
-#  6. Pictures: input and result, risky faces red, same cameras (f3d under Xvfb, ImageMagick).
-#  7. OUT/report.md (the table, the picture, the settings) and OUT/metrics.txt (key=value).
+#     filter (meshlabserver, both directions), volume change and crease share (the share of edge
+#     length whose dihedral angle changed by more than 10 degrees, and its 99th percentile),
+#     largest vertex displacement.
+#  6. Pictures (tools/evaluate_pictures.sh; f3d under Xvfb, ImageMagick): input and result with
+#     the risky faces red; the displacement as a heat map with a colour bar in mm; the support
+#     each slicer will print, drawn from the G-code's support extrusions beside the part's walls.
+#  7. OUT/report.md (the tables, the pictures, the settings) and OUT/metrics.txt (key=value).
 #
 # With --orient the CLI first turns the part into the print pose its orientation search chooses
 # and slims it there; the report then has three columns: input (as given), oriented, and oriented
@@ -21,7 +27,8 @@
 # oriented -> slimmed, in the oriented frame.
 #
 # Needs: a build with support-slim, slim-eval and the private MeshLab prefix (--build, default
-# build/), and prusa-slicer, Xvfb, f3d, ImageMagick (scripts/setup.sh installs them).
+# build/), and prusa-slicer, CuraEngine with Cura's definitions, Xvfb, f3d, ImageMagick
+# (scripts/setup.sh installs them).
 # Exits non-zero with a one-line reason on bad input or when a step fails.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -40,6 +47,8 @@ usage: tools/evaluate.sh MESH [options]
   --orient                orient first (support-slim --orient): three columns, input,
                           oriented, oriented + slimmed
   --orient-effort E       fast, normal or thorough (with --orient)                   [normal]
+  --slicers LIST          prusa, or prusa,cura                                  [prusa,cura]
+  --turns LIST            quarter turns about +Z each slicer figure is the mean of [0,90,180,270]
   --build DIR             build tree holding cli/support-slim, tools/slim-eval, prefix/ [build]
   --name TEXT             the part's name in the report                  [the mesh file name]
   --quiet                 print only the table at the end
@@ -60,11 +69,12 @@ xrun() { "$repo/scripts/with-xvfb.sh" "$@"; }
 is_number() { [[ "$1" =~ ^[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)$ ]]; }
 
 mesh="" out="" size=60 angle=45 dir="0,0,1" build="$repo/build" name="" quiet="" orient=""
+slicers="prusa,cura" turns="0,90,180,270"
 slim_args=() orient_args=()
 while [ $# -gt 0 ]; do
   case "$1" in
     -h|--help) usage; exit 0 ;;
-    --out|--size|--angle|--dir|--build|--name|--resolution|--domain|--method|--iterations|--max-deviation|--max-k|--orient-effort)
+    --out|--size|--angle|--dir|--build|--name|--resolution|--domain|--method|--iterations|--max-deviation|--max-k|--orient-effort|--slicers|--turns)
       [ $# -ge 2 ] || die "$1 needs a value"
       case "$1" in
         --out) out="$2" ;;
@@ -73,6 +83,8 @@ while [ $# -gt 0 ]; do
         --dir) dir="$2" ;;
         --build) build="$2" ;;
         --name) name="$2" ;;
+        --slicers) slicers="$2" ;;
+        --turns) turns="$2" ;;
         --orient-effort) orient_args+=("$1" "$2") ;;
         *) slim_args+=("$1" "$2") ;;
       esac
@@ -96,6 +108,8 @@ slim="$build/cli/support-slim"; eval_tool="$build/tools/slim-eval"; server="$bui
 for f in "$slim" "$eval_tool" "$server"; do
   [ -x "$f" ] || die "$f is missing: build the targets support-slim, slim-eval and filter_support_slimming"
 done
+case "$slicers" in prusa|prusa,cura) ;; *) die "--slicers must be prusa or prusa,cura, got '$slicers'" ;; esac
+[[ "$turns" =~ ^[0-9]+(,[0-9]+)*$ ]] || die "--turns expects degrees like 0,90,180,270, got '$turns'"
 for tool in prusa-slicer Xvfb f3d; do
   command -v "$tool" >/dev/null 2>&1 || die "$tool is not installed (scripts/setup.sh installs it)"
 done
@@ -145,128 +159,86 @@ slim_seconds="$(awk '{ print $4 }' <<<"$iter_line")"
 stop_reason="$(sed -E 's/^[^(]*\((.*)\)$/\1/' <<<"$iter_line")"  # the outer parentheses
 
 for part in "${parts[@]}"; do
-  ref=(); [ "$part" = slimmed ] && ref=(--reference "$out/$base.ply")
+  ref=(); [ "$part" = slimmed ] && ref=(--reference "$out/$base.ply" --displacement-vtk "$out/displacement.vtk")
   "$eval_tool" measure "$out/$part.ply" --angle "$angle" --plate-tolerance "$plate_tol" "${ref[@]}" \
     --stl "$out/$part.stl" --overhang-ply "$out/${part}_overhang.ply" >"$out/$part.txt" 2>"$out/$part.err" ||
     die "$(tail -1 "$out/$part.err" | sed 's/^slim-eval: //')"
 done
 
-# ---- 3./4. slice both under identical settings, measure the support -----------------------------
+# ---- 3./4. slice every part under identical settings, mean over the turns ----------------------
 longest="$(kv "$out/prepare.txt" size | awk -F, '{ m = $1; if ($2 > m) m = $2; if ($3 > m) m = $3; print m }')"
 bed="$(calc "($longest > 150 ? 2 * $longest : 300)")"  # square, with room around the part
-center="$(calc "$bed / 2")"
-slicer_settings=(
-  --layer-height 0.2 --first-layer-height 0.2
-  --nozzle-diameter 0.4 --filament-diameter 1.75
-  --perimeters 2 --top-solid-layers 5 --bottom-solid-layers 4
-  --fill-density 15% --fill-pattern rectilinear
-  --support-material --support-material-auto --support-material-threshold "$threshold"
-  --skirts 0 --brim-width 0
-  --bed-shape "0x0,${bed}x0,${bed}x${bed},0x${bed}" --center "$center,$center"
-  --gcode-comments
-)
+IFS=, read -r -a slicer_list <<<"$slicers"
 for part in "${parts[@]}"; do
-  say "slicing $part.stl (PrusaSlicer, support threshold $threshold deg from the horizontal)"
-  prusa-slicer --export-gcode "${slicer_settings[@]}" --output "$out/$part.gcode" "$out/$part.stl" \
-    >"$out/slice_$part.log" 2>&1 || die "prusa-slicer failed on $part.stl: $(grep -iE 'error|exception' "$out/slice_$part.log" | tail -1)"
-  "$eval_tool" gcode "$out/$part.gcode" >"$out/${part}_gcode.txt" 2>"$out/$part.err" ||
-    die "$(tail -1 "$out/$part.err" | sed 's/^slim-eval: //')"
-  [ "$(kv "$out/${part}_gcode.txt" "setting[support_material_threshold]")" = "$threshold" ] ||
+  for slicer in "${slicer_list[@]}"; do
+    say "slicing $part.stl ($slicer, turns $turns)"
+    "$repo/tools/slice_support.sh" "$out/$part.stl" --slicer "$slicer" --angle "$angle" --turns "$turns" --bed "$bed" \
+      --build "$build" --out "$out/slices/$part" >"$out/${part}_$slicer.txt" 2>"$out/$part.err" ||
+      die "$(tail -1 "$out/$part.err" | sed 's/^slice_support: //')"
+  done
+  first_turn="${turns%%,*}"
+  cp "$out/slices/$part/prusa_turn$first_turn.gcode" "$out/$part.gcode"
+  [ "$(kv "$out/slices/$part/prusa_turn$first_turn.txt" "setting[support_material_threshold]")" = "$threshold" ] ||
     die "$part.gcode was not sliced with support threshold $threshold"
 done
 
 # ---- 5. shape change through MeshLab's Hausdorff Distance filter, both directions ---------------
 say "Hausdorff distance (meshlabserver)"
-hausdorff_filter() {  # SAMPLED TARGET
-  cat <<EOF
- <filter name="Hausdorff Distance">
-  <Param type="RichMesh" name="SampledMesh" value="$1"/>
-  <Param type="RichMesh" name="TargetMesh" value="$2"/>
-  <Param type="RichBool" name="SaveSample" value="false"/>
-  <Param type="RichBool" name="SampleVert" value="true"/>
-  <Param type="RichBool" name="SampleEdge" value="true"/>
-  <Param type="RichBool" name="SampleFauxEdge" value="false"/>
-  <Param type="RichBool" name="SampleFace" value="true"/>
-  <Param type="RichInt" name="SampleNum" value="100000"/>
-  <Param type="RichAbsPerc" name="MaxDist" value="$diag" min="0" max="$diag"/>
- </filter>
-EOF
-}
-{ echo '<!DOCTYPE FilterScript>'; echo '<FilterScript>'; hausdorff_filter 0 1; hausdorff_filter 1 0; echo '</FilterScript>'; } \
-  >"$out/hausdorff.mlx"
-xrun "$server" -i "$out/$base.ply" -i "$out/slimmed.ply" -s "$out/hausdorff.mlx" >"$out/hausdorff.log" 2>&1 ||
-  die "meshlabserver failed on the Hausdorff Distance script (see $out/hausdorff.log)"
-# Each run logs "LOG: 2 Sampled N pts ..." then "LOG: 2 min : a   max b   mean : c   RMS : d" in mm
-# (meshlabserver then echoes the whole log again without the "LOG:" prefix).
-mapfile -t hd < <(awk '/^LOG: .*Sampled [0-9]+ pts/ { want = 1; next }
-                       want && /^LOG: .*min :/ { for (i = 1; i <= NF; i++) { if ($i == "max") mx = $(i+1); if ($i == "mean") mn = $(i+2) }
-                                         print mx, mn; want = 0 }' "$out/hausdorff.log")
-[ "${#hd[@]}" -eq 2 ] || die "meshlabserver logged ${#hd[@]} Hausdorff results instead of 2 (see $out/hausdorff.log)"
-read -r max_in_out mean_in_out <<<"${hd[0]}"
-read -r max_out_in mean_out_in <<<"${hd[1]}"
-hausdorff="$(calc "($max_in_out > $max_out_in ? $max_in_out : $max_out_in)")"
-mean_dist="$(calc "($mean_in_out + $mean_out_in) / 2")"
+"$repo/tools/hausdorff.sh" "$out/$base.ply" "$out/slimmed.ply" --diag "$diag" --out "$out" --build "$build" \
+  >"$out/hausdorff.txt" 2>"$out/hausdorff.err" || die "$(tail -1 "$out/hausdorff.err" | sed 's/^hausdorff: //')"
+hausdorff="$(kv "$out/hausdorff.txt" hausdorff_mm)"; mean_dist="$(kv "$out/hausdorff.txt" mean_distance_mm)"
 
-# ---- 6. pictures: same cameras for both, from above and from below -----------------------------
+# ---- 6. pictures: risky faces, displacement, the slicers' support; same cameras throughout ------
 say "rendering"
-read -r cx cy cz reach < <(awk -F'[=,]' '/^bbox_min=/ { x0 = $2; y0 = $3; z0 = $4 } /^bbox_max=/ { x1 = $2; y1 = $3; z1 = $4 }
-  END { dx = x1 - x0; dy = y1 - y0; dz = z1 - z0; print (x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2, 1.8 * sqrt(dx*dx + dy*dy + dz*dz) }' \
-  "$out/input.txt")
-camera() {  # ELEVATION_Z: the camera direction is (0.55, -0.8, ELEVATION_Z), normalised
-  awk -v cx="$cx" -v cy="$cy" -v cz="$cz" -v r="$reach" -v ez="$1" 'BEGIN {
-    n = sqrt(0.55 * 0.55 + 0.64 + ez * ez)
-    printf "--camera-position=%g,%g,%g --camera-focal-point=%g,%g,%g --camera-view-up=0,0,1",
-      cx + r * 0.55 / n, cy - r * 0.8 / n, cz + r * ez / n, cx, cy, cz }'
-}
-for part in "${parts[@]}"; do
-  views=()
-  for view in above:0.35 below:-0.6; do
-    png="$out/${part}_${view%%:*}.png"
-    # shellcheck disable=SC2046  # the camera flags are meant to split
-    xrun f3d "$out/${part}_overhang.ply" --output="$png" --scalars=RGBA --comp=-2 --cells \
-      --resolution=480,420 --bg-color=1,1,1 $(camera "${view#*:}") >"$out/render.log" 2>&1 && [ -s "$png" ] ||
-      die "f3d could not render ${part}_overhang.ply (see $out/render.log)"
-    views+=("$png")
-  done
-  # A caption on the top view; it needs a font, and the picture is fine without one.
-  convert "${views[0]}" -background white -gravity north -splice 0x36 -font DejaVu-Sans -pointsize 22 -annotate +0+8 "$part" "${views[0]}" 2>/dev/null || true
-  convert "${views[@]}" -append "$out/$part.png" || die "ImageMagick could not stack the views of $part"
-done
-picture="$out/before_after.png"
-pictures=(); for part in "${parts[@]}"; do pictures+=("$out/$part.png"); done
-convert "${pictures[@]}" +append "$picture" || die "ImageMagick could not join the pictures"
+# shellcheck source=evaluate_pictures.sh
+. "$repo/tools/evaluate_pictures.sh"
+render_pictures
 
 # ---- 7. report ----------------------------------------------------------------------------------
-support_before="$(calc "$(kv "$out/input_gcode.txt" support_mm3)")"
-support_after="$(calc "$(kv "$out/slimmed_gcode.txt" support_mm3)")"
+# sup PART SLICER [KEY]: a slicer figure of a part (default: the support, mean over the turns).
+sup() { [ -f "$out/${1}_$2.txt" ] && calc "$(kv "$out/${1}_$2.txt" "${3:-support_mm3}")" || true; }
 change() {  # BEFORE AFTER -> signed % change, or n/a when BEFORE is 0
-  awk -v b="$1" -v a="$2" 'BEGIN { if (b == 0) print "n/a"; else printf "%+.1f%%", 100 * (a / b - 1) }'
+  awk -v b="$1" -v a="$2" 'BEGIN { if (b == "" || a == "" || b == 0) print "n/a"; else printf "%+.1f%%", 100 * (a / b - 1) }'
 }
+change_num() { awk -v b="$1" -v a="$2" 'BEGIN { printf "%.6g", (b > 0 ? 100 * (a / b - 1) : 0) }'; }
+support_before="$(sup input prusa)"; support_after="$(sup slimmed prusa)"
 support_change="$(change "$support_before" "$support_after")"
+cura_before="$(sup input cura)"; cura_after="$(sup slimmed cura)"
 risky_before="$(kv "$out/input.txt" risky_area)"; risky_after="$(kv "$out/slimmed.txt" risky_area)"
 area_before="$(kv "$out/input.txt" area)"; area_after="$(kv "$out/slimmed.txt" area)"
-volume_before="$(kv "$out/input.txt" volume)"; volume_after="$(kv "$out/slimmed.txt" volume)"
+volume_before="$(kv "$out/$base.txt" volume)"; volume_after="$(kv "$out/slimmed.txt" volume)"
 max_disp="$(kv "$out/slimmed.txt" max_displacement)"
+crease_share="$(kv "$out/slimmed.txt" crease_share_pct)"; crease_p99="$(kv "$out/slimmed.txt" crease_p99_deg)"
 proxy_before="$(kv "$out/input.txt" shadow_volume)"; proxy_after="$(kv "$out/slimmed.txt" shadow_volume)"
 if [ -n "$orient" ]; then
-  support_oriented="$(calc "$(kv "$out/oriented_gcode.txt" support_mm3)")"
-  total_oriented="$(kv "$out/oriented_gcode.txt" total_mm3)"
-  check_oriented="$(kv "$out/oriented_gcode.txt" total_vs_slicer_pct)"
+  support_oriented="$(sup oriented prusa)"; cura_oriented="$(sup oriented cura)"
+  total_oriented="$(sup oriented prusa total_mm3)"
   risky_oriented="$(kv "$out/oriented.txt" risky_area)"; area_oriented="$(kv "$out/oriented.txt" area)"
   proxy_oriented="$(kv "$out/oriented.txt" shadow_volume)"
 fi
-total_before="$(kv "$out/input_gcode.txt" total_mm3)"; total_after="$(kv "$out/slimmed_gcode.txt" total_mm3)"
-check_before="$(kv "$out/input_gcode.txt" total_vs_slicer_pct)"; check_after="$(kv "$out/slimmed_gcode.txt" total_vs_slicer_pct)"
+total_before="$(sup input prusa total_mm3)"; total_after="$(sup slimmed prusa total_mm3)"
+check_before="$(sup input prusa total_vs_slicer_pct)"; check_after="$(sup slimmed prusa total_vs_slicer_pct)"
 share() { awk -v v="$1" -v t="$2" 'BEGIN { printf "%.1f%%", 100 * v / t }'; }
 pct_of_diag() { awk -v v="$1" -v d="$diag" 'BEGIN { printf "%.2f", 100 * v / d }'; }
+n_turns="$(awk -F, '{ print NF }' <<<"$turns")"
 elapsed=$((SECONDS - started))
 
 {
   echo "support_mm3_before=$support_before"
   echo "support_mm3_after=$support_after"
-  echo "support_change_pct=$(calc "($support_before > 0 ? 100 * ($support_after / $support_before - 1) : 0)")"
-  echo "support_interface_mm_before=$(kv "$out/input_gcode.txt" support_interface_mm)"
-  echo "support_interface_mm_after=$(kv "$out/slimmed_gcode.txt" support_interface_mm)"
+  echo "support_change_pct=$(change_num "$support_before" "$support_after")"
+  echo "support_spread_pct_before=$(sup input prusa spread_pct)"
+  echo "support_spread_pct_after=$(sup slimmed prusa spread_pct)"
+  echo "support_interface_mm3_before=$(sup input prusa support_interface_mm3)"
+  echo "support_interface_mm3_after=$(sup slimmed prusa support_interface_mm3)"
+  if [ -n "$cura_before" ]; then
+    echo "cura_support_mm3_before=$cura_before"
+    echo "cura_support_mm3_after=$cura_after"
+    echo "cura_support_change_pct=$(change_num "$cura_before" "$cura_after")"
+    echo "cura_support_spread_pct_before=$(sup input cura spread_pct)"
+    echo "cura_support_spread_pct_after=$(sup slimmed cura spread_pct)"
+  fi
+  echo "turns=$n_turns"
   echo "filament_mm3_before=$total_before"
   echo "filament_mm3_after=$total_after"
   echo "total_vs_slicer_pct_before=$check_before"
@@ -275,6 +247,7 @@ elapsed=$((SECONDS - started))
   echo "shadow_volume_after=$proxy_after"
   if [ -n "$orient" ]; then
     echo "support_mm3_oriented=$support_oriented"
+    [ -z "$cura_oriented" ] || echo "cura_support_mm3_oriented=$cura_oriented"
     echo "filament_mm3_oriented=$total_oriented"
     echo "risky_area_oriented=$risky_oriented"
     echo "shadow_volume_oriented=$proxy_oriented"
@@ -285,7 +258,9 @@ elapsed=$((SECONDS - started))
   echo "risky_area_after=$risky_after"
   echo "volume_before=$volume_before"
   echo "volume_after=$volume_after"
-  echo "volume_change_pct=$(calc "100 * ($volume_after / $volume_before - 1)")"
+  echo "volume_change_pct=$(change_num "$volume_before" "$volume_after")"
+  echo "crease_share_pct=$crease_share"
+  echo "crease_p99_deg=$crease_p99"
   echo "hausdorff_mm=$hausdorff"
   echo "hausdorff_pct=$(pct_of_diag "$hausdorff")"
   echo "mean_distance_mm=$mean_dist"
@@ -301,18 +276,27 @@ elapsed=$((SECONDS - started))
   echo "evaluation_seconds=$elapsed"
 } >"$out/metrics.txt"
 
+# Rows every table shares: the shape change of the slimming, next to each other.
+shape_rows() {  # WITH_VOLUME(yes/no) LEADING_EMPTY_CELLS
+  [ "$1" = no ] || echo "| volume change | $2$(change "$volume_before" "$volume_after") |"
+  echo "| crease share (dihedral change > 10°) | $2$(fmt 2 "$crease_share")% of edge length, 99th percentile $(fmt 1 "$crease_p99")° |"
+  echo "| Hausdorff distance (symmetric) | $2$(fmt 3 "$hausdorff") mm ($(pct_of_diag "$hausdorff")% of diag) |"
+  echo "| mean distance (both ways) | $2$(fmt 3 "$mean_dist") mm ($(pct_of_diag "$mean_dist")% of diag) |"
+  echo "| largest vertex displacement | $2$(fmt 3 "$max_disp") mm ($(pct_of_diag "$max_disp")% of diag) |"
+}
+mm3() { [ -n "$1" ] && echo "$(fmt 0 "$1") mm³" || echo "n/a"; }
+
 table_oriented() {
   echo "| | input (as given) | oriented | oriented + slimmed |"
   echo "| --- | ---: | ---: | ---: |"
-  echo "| support material (PrusaSlicer) | $(fmt 0 "$support_before") mm³ | $(fmt 0 "$support_oriented") mm³ ($(change "$support_before" "$support_oriented")) | **$(fmt 0 "$support_after") mm³ ($support_change)** |"
-  echo "| support proxy (shadow volume) | $(fmt 0 "$proxy_before") mm³ | $(fmt 0 "$proxy_oriented") mm³ ($(change "$proxy_before" "$proxy_oriented")) | $(fmt 0 "$proxy_after") mm³ ($(change "$proxy_before" "$proxy_after")) |"
+  echo "| support, PrusaSlicer (mean of $n_turns turns) | $(mm3 "$support_before") | $(mm3 "$support_oriented") ($(change "$support_before" "$support_oriented")) | **$(mm3 "$support_after") ($support_change)** |"
+  [ -z "$cura_before" ] || echo "| support, Cura (mean of $n_turns turns) | $(mm3 "$cura_before") | $(mm3 "$cura_oriented") ($(change "$cura_before" "$cura_oriented")) | **$(mm3 "$cura_after") ($(change "$cura_before" "$cura_after"))** |"
+  echo "| support proxy (shadow volume) | $(mm3 "$proxy_before") | $(mm3 "$proxy_oriented") ($(change "$proxy_before" "$proxy_oriented")) | $(mm3 "$proxy_after") ($(change "$proxy_before" "$proxy_after")) |"
   echo "| risky area (alpha_max $angle°) | $(fmt 1 "$risky_before") mm² ($(share "$risky_before" "$area_before")) | $(fmt 1 "$risky_oriented") mm² ($(share "$risky_oriented" "$area_oriented")) | $(fmt 1 "$risky_after") mm² ($(share "$risky_after" "$area_after")) |"
-  echo "| all filament | $(fmt 0 "$total_before") mm³ | $(fmt 0 "$total_oriented") mm³ | $(fmt 0 "$total_after") mm³ |"
+  echo "| all filament (PrusaSlicer) | $(mm3 "$total_before") | $(mm3 "$total_oriented") | $(mm3 "$total_after") |"
   echo "| print direction (input frame) | 0,0,1 | $orient_direction (turned $orient_turn°) | same |"
-  echo "| Hausdorff distance, slimming only (oriented → slimmed) | | | $(fmt 3 "$hausdorff") mm ($(pct_of_diag "$hausdorff")% of diag) |"
-  echo "| mean distance, slimming only | | | $(fmt 3 "$mean_dist") mm ($(pct_of_diag "$mean_dist")% of diag) |"
-  echo "| largest vertex displacement, slimming only | | | $(fmt 3 "$max_disp") mm ($(pct_of_diag "$max_disp")% of diag) |"
-  echo "| volume | $(fmt 0 "$volume_before") mm³ | | $(fmt 0 "$volume_after") mm³ ($(change "$volume_before" "$volume_after")) |"
+  echo "| *slimming only (oriented → slimmed):* | | | |"
+  shape_rows yes "| | "
   echo "| iterations, optimizer time | | | $iterations, $slim_seconds s ($stop_reason) |"
 }
 
@@ -320,18 +304,27 @@ table() {
   if [ -n "$orient" ]; then table_oriented; return; fi
   echo "| | input | slimmed | change |"
   echo "| --- | ---: | ---: | ---: |"
-  echo "| support material (PrusaSlicer) | $(fmt 0 "$support_before") mm³ | $(fmt 0 "$support_after") mm³ | **$support_change** |"
-  echo "| all filament | $(fmt 0 "$total_before") mm³ | $(fmt 0 "$total_after") mm³ | $(change "$total_before" "$total_after") |"
+  echo "| support, PrusaSlicer (mean of $n_turns turns) | $(mm3 "$support_before") | $(mm3 "$support_after") | **$support_change** |"
+  [ -z "$cura_before" ] || echo "| support, Cura (mean of $n_turns turns) | $(mm3 "$cura_before") | $(mm3 "$cura_after") | **$(change "$cura_before" "$cura_after")** |"
+  echo "| all filament (PrusaSlicer) | $(mm3 "$total_before") | $(mm3 "$total_after") | $(change "$total_before" "$total_after") |"
   echo "| risky area (alpha_max $angle°) | $(fmt 1 "$risky_before") mm² ($(share "$risky_before" "$area_before")) | $(fmt 1 "$risky_after") mm² ($(share "$risky_after" "$area_after")) | $(change "$risky_before" "$risky_after") |"
-  echo "| volume | $(fmt 0 "$volume_before") mm³ | $(fmt 0 "$volume_after") mm³ | $(change "$volume_before" "$volume_after") |"
-  echo "| Hausdorff distance (symmetric) | | $(fmt 3 "$hausdorff") mm | $(pct_of_diag "$hausdorff")% of diag |"
-  echo "| mean distance (both ways) | | $(fmt 3 "$mean_dist") mm | $(pct_of_diag "$mean_dist")% of diag |"
-  echo "| largest vertex displacement | | $(fmt 3 "$max_disp") mm | $(pct_of_diag "$max_disp")% of diag |"
+  echo "| volume | $(mm3 "$volume_before") | $(mm3 "$volume_after") | $(change "$volume_before" "$volume_after") |"
+  shape_rows no "| | "
   echo "| iterations, optimizer time | | $iterations, $slim_seconds s | $stop_reason |"
 }
 
+turn_table() {  # the figure of each turn: how far a single run can be off
+  echo "| support per turn (mm³) | $(tr ',' '\n' <<<"$turns" | sed 's/$/°/' | paste -sd'|' | sed 's/|/ | /g') | spread |"
+  echo "| --- |$(tr ',' '\n' <<<"$turns" | sed 's/.*/ ---: |/' | paste -sd'\0')  ---: |"
+  for part in "${parts[@]}"; do
+    for slicer in "${slicer_list[@]}"; do
+      echo "| $part, $slicer | $(for t in ${turns//,/ }; do printf '%s | ' "$(fmt 0 "$(kv "$out/${part}_$slicer.txt" "support_mm3_turn$t")")"; done)$(fmt 1 "$(kv "$out/${part}_$slicer.txt" spread_pct)")% |"
+    done
+  done
+}
+
 {
-  echo "# Support Slimming, judged by PrusaSlicer: $name"
+  echo "# Support Slimming, judged by PrusaSlicer and Cura: $name"
   echo
   if [ -n "$orient" ]; then
     echo "Input \`$mesh\` as given along $dir, then turned by the orientation search (print direction"
@@ -341,36 +334,50 @@ table() {
   fi
   echo " to a longest side of $size mm (×$(kv "$out/prepare.txt" scale)),"
   echo "bounding-box diagonal $(fmt 2 "$diag") mm. Self-supporting angle $angle° from the vertical, so"
-  echo "PrusaSlicer's support threshold is $threshold° (it measures from the horizontal)."
+  echo "PrusaSlicer's support threshold is $threshold° (it measures from the horizontal) and Cura's support angle $angle°."
   echo
   table
   echo
-  echo "Differences in support volume under about 2% are slicer noise: a 0.1% change of scale moves"
-  echo "the support by about 1.2%, a 1° turn about Z by about 0.75%. Both parts are sliced at one fixed"
-  echo "scale, in the same place, with the same settings."
+  echo "Each support figure is the mean over $n_turns quarter turns about the print axis. The slicers"
+  echo "stretch support to a grid aligned with the part's bounding box, so one run moves by several"
+  echo "percent with the grid's phase alone (below); differences within that spread are slicer noise."
+  echo
+  turn_table
   echo
   echo "![${parts[*]}, left to right](before_after.png)"
   echo
   echo "Left to right: ${parts[*]}; top seen from above, bottom from below, same cameras."
   echo "Red faces need support by our rule (n·d + sin(alpha_max) < 0), blue ones do not."
   echo
+  echo "![how far each vertex moved](displacement.png)"
+  echo
+  echo "How far each vertex moved from the $base part, in mm (colour bar), from above and below."
+  echo
+  echo "![the support the slicers print](support.png)"
+  echo
+  echo "The support each slicer will print (orange: its support extrusions in the G-code, turn ${turns%%,*}),"
+  echo "beside the part's outer walls of every second layer (grey); ${parts[*]} left to right, same camera."
+  echo
   echo "## How it was measured"
   echo
   echo "- Support Slimming: \`support-slim ${pose_args[*]/#$out\//} --angle $angle --plate-tolerance $plate_tol${slim_args[*]:+ ${slim_args[*]}}\`"
   echo "  on the part in the print frame; it stopped after $iterations iterations ($stop_reason)."
-  echo "- Slicer: $(prusa-slicer --help 2>/dev/null | grep -m1 -o 'PrusaSlicer-[^ ]*'), \`${slicer_settings[*]}\`."
+  echo "- Slicers: $(prusa-slicer --help 2>/dev/null | grep -m1 -o 'PrusaSlicer-[^ ]*')$( [ -z "$cura_before" ] || echo ", CuraEngine $(CuraEngine help 2>&1 | grep -m1 -o 'version [0-9.]*' | cut -d' ' -f2)"),"
+  echo "  with the settings of \`tools/slice_support.sh\` (0.2 mm layers, 2 walls, 15% infill, automatic support everywhere),"
+  echo "  each part at turns $turns about +Z."
   echo "- Support: the filament extruded (E rising while X/Y move, wipes and retractions left out) in the"
-  echo "  G-code's \`;TYPE:Support material\` and \`;TYPE:Support material interface\` sections, times the"
-  echo "  cross-section of $(kv "$out/input_gcode.txt" filament_diameter) mm filament. All extrusion summed the same way differs from"
-  echo "  the slicer's own \"filament used\" by $(fmt 4 "$check_before")% (input) and $(fmt 4 "$check_after")% (slimmed)."
-  echo "- Shape: MeshLab's Hausdorff Distance filter (meshlabserver), input → slimmed and slimmed → input,"
+  echo "  G-code's support sections (PrusaSlicer: \`Support material\`, \`Support material interface\`; Cura:"
+  echo "  \`SUPPORT\`, \`SUPPORT-INTERFACE\`), times the filament's cross-section (1.75 mm). All extrusion summed the"
+  echo "  same way differs from PrusaSlicer's own \"filament used\" by at most $(fmt 4 "$check_before")% (input) and $(fmt 4 "$check_after")% (slimmed)."
+  echo "- Shape: MeshLab's Hausdorff Distance filter (meshlabserver), $base → slimmed and slimmed → $base,"
   echo "  100000 samples on faces, edges and vertices; max of the two maxima, mean of the two means."
-  echo "  Volume and displacement from the meshes (same vertices before and after)."
-  echo "- Files: \`input.gcode\`, \`slimmed.gcode\`, \`slimmed.ply\` (deformed part), \`metrics.txt\` beside this report."
+  echo "  Volume (signed enclosed volume), crease share (over interior manifold edges, the length share whose"
+  echo "  dihedral angle changed by more than 10°) and displacement from the meshes (same vertices before and after)."
+  echo "- Files: \`slices/<part>/<slicer>_turn<deg>.gcode\`, \`slimmed.ply\` (deformed part), \`metrics.txt\` beside this report."
 } >"$out/report.md"
 
 if [ -z "$quiet" ]; then echo; fi
-echo "$name: support $(fmt 0 "$support_before") -> $(fmt 0 "$support_after") mm³ ($support_change) at alpha_max $angle°, $size mm"
+echo "$name: support $(fmt 0 "$support_before") -> $(fmt 0 "$support_after") mm³ ($support_change, PrusaSlicer, mean of $n_turns turns) at alpha_max $angle°, $size mm"
 table
 echo "report:  $out/report.md"
-echo "picture: $picture"
+echo "picture: $out/before_after.png"

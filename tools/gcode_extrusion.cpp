@@ -1,6 +1,7 @@
 #include "gcode_extrusion.h"
 
 #include <algorithm>
+#include <iterator>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -116,13 +117,30 @@ double GcodeExtrusion::type_mm(const std::string& type) const {
   return it == by_type.end() ? 0.0 : it->second;
 }
 
+namespace {
+const char* const kSupportTypes[] = {"Support material", "Support material interface", "SUPPORT", "SUPPORT-INTERFACE"};
+const char* const kInterfaceTypes[] = {"Support material interface", "SUPPORT-INTERFACE"};
+}  // namespace
+
+bool is_support_type(const std::string& type) {
+  return std::find(std::begin(kSupportTypes), std::end(kSupportTypes), type) != std::end(kSupportTypes);
+}
+
 double GcodeExtrusion::support_mm() const {
-  return type_mm("Support material") + type_mm("Support material interface");
+  double sum = 0.0;
+  for (const char* t : kSupportTypes) sum += type_mm(t);
+  return sum;
+}
+
+double GcodeExtrusion::support_interface_mm() const {
+  double sum = 0.0;
+  for (const char* t : kInterfaceTypes) sum += type_mm(t);
+  return sum;
 }
 
 double filament_area(double diameter_mm) { return M_PI * 0.25 * diameter_mm * diameter_mm; }
 
-GcodeExtrusion measure_extrusion(std::istream& gcode) {
+GcodeExtrusion measure_extrusion(std::istream& gcode, const ExtrusionVisitor& visit) {
   GcodeExtrusion out;
   Machine m;
   std::string line;
@@ -165,6 +183,7 @@ GcodeExtrusion measure_extrusion(std::istream& gcode) {
     switch (code) {
       case 0: case 1: case 2: case 3: {
         double* xyz[3] = {&m.x, &m.y, &m.z};
+        const double from[3] = {m.x, m.y, m.z};
         bool moved_xy = code >= 2;  // an arc always moves in XY (a full circle ends where it began)
         for (int a = 0; a < 3; ++a) {
           if (!given[a]) continue;
@@ -178,6 +197,7 @@ GcodeExtrusion measure_extrusion(std::istream& gcode) {
         if (de > 0 && moved_xy && !m.wiping) {
           out.by_type[m.type] += de;
           out.total_mm += de;
+          if (visit) visit({m.type, {from[0], from[1], from[2]}, {m.x, m.y, m.z}, de});
         }
         break;
       }

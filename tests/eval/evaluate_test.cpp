@@ -10,7 +10,9 @@
 #include <map>
 #include <sstream>
 
+#include "core/shape_metrics.h"
 #include "gcode_extrusion.h"
+#include "key_values.h"
 #include "run_command.h"
 #include "support/shapes.h"
 #include "vcg_adapters/mesh_io.h"
@@ -24,24 +26,8 @@ namespace {
 // ~1.2%); a real saving must be clearly larger.
 constexpr double kSlicerNoise = 0.02;
 
-// Kept after the test (overwritten by the next run): the reports are worth a look.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(SLIM_EVAL_OUT_DIR) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::map<std::string, double> read_metrics(const fs::path& file) {
-  std::map<std::string, double> m;
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line)) {
-    const size_t eq = line.find('=');
-    if (eq != std::string::npos) m[line.substr(0, eq)] = std::stod(line.substr(eq + 1));
-  }
-  return m;
-}
+fs::path scratch(const std::string& name) { return test::scratch_dir(SLIM_EVAL_OUT_DIR, name); }
+std::map<std::string, double> read_metrics(const fs::path& file) { return test::read_key_values(file); }
 
 std::string read_text(const fs::path& file) {
   std::ifstream in(file);
@@ -66,14 +52,14 @@ struct Judged {
   fs::path out;
   std::map<std::string, double> metrics;
 };
-Judged judge_arch(double angle) {
+Judged judge_arch(double angle, const std::string& more = "") {
   Judged j;
   const fs::path dir = scratch("arch_" + std::to_string(static_cast<int>(angle)));
   const fs::path mesh = dir / "arch.ply";
   vcgx::save_surface(mesh.string(), test::refined(test::arch(), 1));
   j.out = dir / "report";
   j.run = evaluate(test::shell_quote(mesh.string()) + " --angle " + std::to_string(angle) + " --out " +
-                   test::shell_quote(j.out.string()));
+                   test::shell_quote(j.out.string()) + " " + more);
   j.metrics = read_metrics(j.out / "metrics.txt");
   return j;
 }
@@ -95,12 +81,33 @@ TEST(Evaluate, SlimmedArchNeedsLessSupportInPrusaSlicer) {
   ASSERT_EQ(j.run.exit_code, 0) << j.run.output;
   expect_less_support_than_noise(j);
 
-  // The support figure is the G-code's support sections times the filament's cross-section.
-  const eval::GcodeExtrusion g = read_gcode(j.out / "slimmed.gcode");
-  EXPECT_NEAR(g.support_mm() * eval::filament_area(*g.filament_diameter()), j.metrics.at("support_mm3_after"),
-              1e-4 * j.metrics.at("support_mm3_after"));
-  EXPECT_EQ(g.settings.at("support_material_threshold"), "45");
-  EXPECT_EQ(g.settings.at("layer_height"), "0.2");
+  // Each slicer's figure is the mean, over the four quarter turns, of the G-code's support
+  // sections times the filament's cross-section.
+  for (const std::string slicer : {"prusa", "cura"}) {
+    for (const std::string part : {"input", "slimmed"}) {
+      double sum = 0.0;
+      for (int t : {0, 90, 180, 270}) {
+        const eval::GcodeExtrusion g = read_gcode(j.out / "slices" / part / (slicer + "_turn" + std::to_string(t) + ".gcode"));
+        sum += g.support_mm() * eval::filament_area(1.75);
+        if (slicer == "prusa") {
+          EXPECT_EQ(g.settings.at("support_material_threshold"), "45");
+          EXPECT_EQ(g.settings.at("layer_height"), "0.2");
+        }
+      }
+      const std::string key = (slicer == "cura" ? "cura_" : "") + std::string("support_mm3_") + (part == "input" ? "before" : "after");
+      EXPECT_NEAR(sum / 4, j.metrics.at(key), 1e-4 * j.metrics.at(key)) << key;
+    }
+  }
+  EXPECT_EQ(j.metrics.at("turns"), 4);
+  // Cura agrees that the slimmed arch needs less support.
+  EXPECT_LT(j.metrics.at("cura_support_mm3_after"), (1.0 - kSlicerNoise) * j.metrics.at("cura_support_mm3_before"));
+
+  // Volume change and crease share are the core's, from the two meshes.
+  const ShapeChange c = shape_change(vcgx::load_surface((j.out / "input.ply").string()),
+                                     vcgx::load_surface((j.out / "slimmed.ply").string()));
+  EXPECT_NEAR(j.metrics.at("volume_change_pct"), c.volume_change_pct, 1e-3);
+  EXPECT_NEAR(j.metrics.at("crease_share_pct"), c.crease_share_pct, 1e-3);
+  EXPECT_NEAR(j.metrics.at("crease_p99_deg"), c.crease_p99_deg, 1e-3);
 
   // Shape: every sample moves with its triangle, so the Hausdorff distance MeshLab measures
   // cannot exceed the largest vertex displacement, which the 5% budget bounds.
@@ -114,18 +121,24 @@ TEST(Evaluate, SlimmedArchNeedsLessSupportInPrusaSlicer) {
 
   // The report holds the table, the noise caveat and the picture.
   const std::string report = read_text(j.out / "report.md");
-  EXPECT_NE(report.find("| support material (PrusaSlicer) |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| support, PrusaSlicer (mean of 4 turns) |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| support, Cura (mean of 4 turns) |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| crease share (dihedral change > 10°) |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| support per turn (mm³) |"), std::string::npos) << report;
   EXPECT_NE(report.find("| Hausdorff distance (symmetric) |"), std::string::npos) << report;
   EXPECT_NE(report.find("| iterations, optimizer time |"), std::string::npos) << report;
   EXPECT_NE(report.find("slicer noise"), std::string::npos) << report;
-  EXPECT_NE(report.find("](before_after.png)"), std::string::npos) << report;
-  const std::string png = read_text(j.out / "before_after.png");
-  ASSERT_GT(png.size(), 10000u);
-  EXPECT_EQ(png.substr(1, 3), "PNG");
+  // The pictures: risky faces, the displacement heat map, the support from the G-codes.
+  for (const std::string picture : {"before_after.png", "displacement.png", "support.png"}) {
+    EXPECT_NE(report.find("](" + picture + ")"), std::string::npos) << report;
+    const std::string png = read_text(j.out / picture);
+    ASSERT_GT(png.size(), 10000u) << picture;
+    EXPECT_EQ(png.substr(1, 3), "PNG") << picture;
+  }
 }
 
 TEST(Evaluate, ThirtyDegreesReachesTheSlicerAsSixtyFromTheHorizontal) {
-  const Judged j = judge_arch(30.0);
+  const Judged j = judge_arch(30.0, "--slicers prusa --turns 0");  // the threshold needs one run
   ASSERT_EQ(j.run.exit_code, 0) << j.run.output;
   EXPECT_EQ(read_gcode(j.out / "input.gcode").settings.at("support_material_threshold"), "60");
   EXPECT_EQ(read_gcode(j.out / "slimmed.gcode").settings.at("support_material_threshold"), "60");
@@ -139,7 +152,8 @@ TEST(Evaluate, OrientModeJudgesInputOrientedAndSlimmedAndMeasuresOnlyTheSlimming
   const fs::path mesh = dir / "mushroom.ply";
   vcgx::save_surface(mesh.string(), test::refined(test::mushroom(), 1));
   const fs::path out = dir / "report";
-  const test::CommandRun run = evaluate(test::shell_quote(mesh.string()) + " --orient --out " + test::shell_quote(out.string()));
+  const test::CommandRun run =
+      evaluate(test::shell_quote(mesh.string()) + " --orient --turns 0,90 --out " + test::shell_quote(out.string()));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::map<std::string, double> m = read_metrics(out / "metrics.txt");
   EXPECT_LT(m.at("support_mm3_oriented"), 0.5 * m.at("support_mm3_before"));
@@ -173,7 +187,9 @@ TEST(Evaluate, BadInputFailsWithAOneLineReason) {
         test::shell_quote(arch.string()) + " --angle 90", test::shell_quote(arch.string()) + " --size ten",
         test::shell_quote(arch.string()) + " --frobnicate 1",
         test::shell_quote(arch.string()) + " --orient-effort fast",
-        test::shell_quote(arch.string()) + " --orient --orient-effort huge", std::string()}) {
+        test::shell_quote(arch.string()) + " --orient --orient-effort huge",
+        test::shell_quote(arch.string()) + " --slicers cura", test::shell_quote(arch.string()) + " --turns 0,",
+        std::string()}) {
     const test::CommandRun r = evaluate(args + " --out " + test::shell_quote((dir / "bad").string()));
     EXPECT_NE(r.exit_code, 0) << args;
     EXPECT_EQ(r.output.rfind("evaluate: ", 0), 0u) << args << ": " << r.output;

@@ -2,11 +2,13 @@
 // tally, the slicer threshold for our self-supporting angle, and the print frame.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
 #include "core/overhang.h"
 #include "gcode_extrusion.h"
+#include "orient_faces.h"
 #include "print_setup.h"
 #include "support/shapes.h"
 
@@ -98,6 +100,60 @@ TEST(GcodeExtrusion, FooterTotalsAndFilament) {
   EXPECT_FALSE(none.filament_diameter().has_value());
 }
 
+TEST(GcodeExtrusion, CuraSupportSectionsAndItsRetractions) {
+  // As CuraEngine 4.13 writes it: absolute E, G92 E0 resets, retractions as E alone (negative
+  // after a reset), G0 travels, ";LAYER:" lines, and its own section names.
+  const GcodeExtrusion g = tally(
+      ";FLAVOR:Marlin\n;Filament used: 0m\nM82 ;absolute extrusion mode\nG92 E0\nG1 F200 E3\nG92 E0\n"
+      "G1 F1500 E-6.5\n;LAYER:0\nG0 F3600 X140.9 Y135.2 Z0.2\n"
+      ";TYPE:SUPPORT\n"
+      "G1 F1500 E0 ; unretract: no plastic\n"
+      "G1 F1800 X140.9 Y164.8 E1.25 ; +1.25\n"
+      "G1 X143.5 Y164.8 E1.5 ; +0.25\n"
+      ";TYPE:WALL-OUTER\n"
+      "G1 X150 Y164.8 E2.5 ; +1.0\n"
+      "G1 F1500 E-4.0 ; retract\n"
+      "G0 F3600 X150 Y140\n"
+      ";LAYER:1\n"
+      "G1 F1500 E2.5 ; unretract\n"
+      ";TYPE:SUPPORT-INTERFACE\n"
+      "G1 X152 Y140 E3.0 ; +0.5\n"
+      ";TYPE:SUPPORT\n"
+      "G92 E0\n"
+      "G1 X152 Y145 E0.75 ; +0.75\n");
+  EXPECT_NEAR(g.type_mm("SUPPORT"), 2.25, 1e-12);
+  EXPECT_NEAR(g.type_mm("SUPPORT-INTERFACE"), 0.5, 1e-12);
+  EXPECT_NEAR(g.support_mm(), 2.75, 1e-12);
+  EXPECT_NEAR(g.support_interface_mm(), 0.5, 1e-12);
+  EXPECT_NEAR(g.total_mm, 3.75, 1e-12);
+  EXPECT_FALSE(g.slicer_total_mm());     // Cura's command line writes no total
+  EXPECT_FALSE(g.filament_diameter());   // nor the filament
+  EXPECT_TRUE(eval::is_support_type("SUPPORT"));
+  EXPECT_TRUE(eval::is_support_type("Support material interface"));
+  EXPECT_FALSE(eval::is_support_type("WALL-OUTER"));
+  EXPECT_FALSE(eval::is_support_type("support"));  // names are exact
+}
+
+TEST(GcodeExtrusion, TheVisitorSeesEveryCountedMoveWithItsEnds) {
+  std::istringstream in(
+      "M83\n;TYPE:SUPPORT\nG1 X1 Y0 Z0.2 E0.5\nG1 E-1\nG0 X5 Y5\nG1 E1\n;TYPE:External perimeter\n"
+      "G1 X6 Y5 E0.25\nG1 X6 Y5 Z0.4 E0.1 ; Z only: not counted\n");
+  std::vector<std::string> types;
+  double sum = 0.0;
+  std::vector<std::array<double, 6>> ends;
+  const GcodeExtrusion g = eval::measure_extrusion(in, [&](const eval::ExtrusionMove& m) {
+    types.push_back(m.type);
+    sum += m.filament_mm;
+    ends.push_back({m.from[0], m.from[1], m.from[2], m.to[0], m.to[1], m.to[2]});
+  });
+  ASSERT_EQ(types.size(), 2u);
+  EXPECT_EQ(types[0], "SUPPORT");
+  EXPECT_EQ(types[1], "External perimeter");
+  EXPECT_NEAR(sum, g.total_mm, 1e-12);
+  EXPECT_EQ(ends[0], (std::array<double, 6>{0, 0, 0, 1, 0, 0.2}));
+  EXPECT_EQ(ends[1], (std::array<double, 6>{5, 5, 0.2, 6, 5, 0.2}));
+}
+
 TEST(GcodeExtrusion, MalformedAxisNumberIsAnError) {
   EXPECT_THROW(tally("G1 X1 Y2 Eabc\n"), std::runtime_error);
   EXPECT_NO_THROW(tally("M117 Extruding X marks\n"));  // message text is not a move
@@ -146,4 +202,22 @@ TEST(PrintFrame, TurnsScalesAndRestsThePartOnThePlate) {
   EXPECT_EQ(analyse_overhang(flipped.surface).risky_count, 0);  // an upside-down T needs no support
 
   EXPECT_THROW(eval::to_print_frame(t, Eigen::Vector3d::Zero(), 60.0), std::invalid_argument);
+}
+
+TEST(OrientFaces, TurnsTheFacesThatDisagreeAndEachPieceOutward) {
+  // A box with three faces turned over, and beside it a whole box inside out.
+  Surface s = test::merge(test::box({0, 0, 0}, {1, 1, 1}), flipped(test::box({3, 0, 0}, {4, 2, 1})));
+  for (int f : {0, 5, 9}) std::swap(s.F(f, 1), s.F(f, 2));
+  EXPECT_GT(edge_topology(s).flipped_edges, 0);
+  const eval::OrientedFaces o = eval::orient_faces(s);
+  EXPECT_TRUE(o.orientable);
+  EXPECT_EQ(o.flipped, 3 + 12);
+  EXPECT_EQ(edge_topology(o.surface).flipped_edges, 0);
+  EXPECT_NEAR(signed_volume(o.surface), 1.0 + 2.0, 1e-12);
+  EXPECT_EQ(o.surface.V, s.V);  // vertices stay, faces keep their order
+  // A mesh that agrees already is left alone.
+  const Surface t = test::t_shape();
+  const eval::OrientedFaces same = eval::orient_faces(t);
+  EXPECT_EQ(same.flipped, 0);
+  EXPECT_EQ(same.surface.F, t.F);
 }

@@ -1,16 +1,19 @@
 // write_shape NAME OUT [LEVELS]: writes one of the test shapes (tests/support/shapes.h) as a mesh
 // file, refined LEVELS times (default 0), so the evaluation tool can judge it like any mesh.
-// NAME: t, mushroom, arch. Exits 1 with a one-line reason on bad input.
+// NAME: t, mushroom, arch, or a creature (tests/support/creatures.h: quadruped, long_neck,
+// upright). Exits 1 with a one-line reason on bad input.
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <string>
 
+#include "support/creatures.h"
 #include "support/shapes.h"
 #include "vcg_adapters/mesh_io.h"
 
 int main(int argc, char** argv) {
   if (argc < 3 || argc > 4) {
-    std::cerr << "usage: write_shape t|mushroom|arch OUT [LEVELS]\n";
+    std::cerr << "usage: write_shape t|mushroom|arch|quadruped|long_neck|upright OUT [LEVELS]\n";
     return 1;
   }
   const std::string name = argv[1];
@@ -20,14 +23,16 @@ int main(int argc, char** argv) {
     return 1;
   }
   slim::Surface s;
-  if (name == "t") s = slim::test::t_shape();
-  else if (name == "mushroom") s = slim::test::mushroom();
-  else if (name == "arch") s = slim::test::arch();
-  else {
-    std::cerr << "write_shape: unknown shape '" << name << "' (t, mushroom, arch)\n";
-    return 1;
-  }
+  const std::vector<std::string> creatures = slim::test::creature_names();
   try {
+    if (name == "t") s = slim::test::t_shape();
+    else if (name == "mushroom") s = slim::test::mushroom();
+    else if (name == "arch") s = slim::test::arch();
+    else if (std::find(creatures.begin(), creatures.end(), name) != creatures.end()) s = slim::test::creature(name);
+    else {
+      std::cerr << "write_shape: unknown shape '" << name << "' (t, mushroom, arch, quadruped, long_neck, upright)\n";
+      return 1;
+    }
     slim::vcgx::save_surface(argv[2], slim::test::refined(s, levels));
   } catch (const std::exception& e) {
     std::cerr << "write_shape: " << e.what() << "\n";

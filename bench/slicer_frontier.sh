@@ -1,0 +1,151 @@
+#!/usr/bin/env bash
+# The slicer frontier: for every corpus model and creature, at each deviation budget and for
+# each method, what the slicers say the slimming saved and what the shape paid.
+#
+#   bench/slicer_frontier.sh [--corpus DIR] [--out DIR] [--budgets 1,2,3,5,10]
+#                            [--methods coherent,paper] [--models a,b,...] [--turns 0,90,180,270]
+#                            [--build DIR] [--plot PNG] [--table-only]
+#
+# Per model (data/corpus/<name>.ply from scripts/corpus.sh: print pose, 60 mm), per method and
+# budget: support-slim --method M --max-deviation B (defaults otherwise, alpha_max 45), then
+#   prusa, cura   support change input -> result, % (tools/slice_support.sh: mean of 4 turns)
+#   hausdorff     symmetric Hausdorff distance, % of the bbox diagonal (tools/hausdorff.sh)
+#   volume        volume change, %;  crease  crease share, % (and its 99th percentile, degrees)
+#   model         the support model's predicted change, %: only when the CLI reports one
+#                 (support-slim --report with support_estimate_before_mm3/_after_mm3); the
+#                 column is left out, never filled with a placeholder, when it does not.
+# Writes OUT/frontier.tsv (every figure, one row per run), OUT/frontier.md (the table) and, with
+# gnuplot, a plot of support cut against Hausdorff distance per model (--plot, default
+# OUT/frontier.png). Every run is cached in OUT/<model>/<method>_<budget>/: a second call only
+# does what is missing, so an interrupted bench resumes; --table-only runs nothing and tables
+# what is there (the runs not made yet are counted, not shown). It is a bench, not a test: it takes
+# about an hour for the whole corpus on 2 cores; the slicers run two at a time.
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+corpus="$repo/data/corpus" out="$repo/out/frontier" budgets="1,2,3,5,10" methods="coherent,paper" models=""
+turns="0,90,180,270" build="$repo/build" plot="" table_only=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --table-only) table_only=1; shift; continue ;;
+    --corpus) corpus="$2" ;; --out) out="$2" ;; --budgets) budgets="$2" ;; --methods) methods="$2" ;;
+    --models) models="$2" ;; --turns) turns="$2" ;; --build) build="$2" ;; --plot) plot="$2" ;;
+    -h|--help) sed -n 2,24p "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "slicer_frontier: unknown argument $1" >&2; exit 1 ;;
+  esac
+  shift 2
+done
+die() { echo "slicer_frontier: $*" >&2; exit 1; }
+kv() { awk -v k="$2" 'index($0, k "=") == 1 { print substr($0, length(k) + 2); exit }' "$1"; }
+pct() { awk -v b="$1" -v a="$2" 'BEGIN { if (b == "" || a == "" || b == 0) print "n/a"; else printf "%.1f", 100 * (a / b - 1) }'; }
+[ -f "$corpus/manifest.tsv" ] || die "no corpus in $corpus: run scripts/corpus.sh first"
+build="$(cd "$build" && pwd)"; mkdir -p "$out"; out="$(cd "$out" && pwd)"
+slim="$build/cli/support-slim" eval_tool="$build/tools/slim-eval"
+[ -x "$slim" ] && [ -x "$eval_tool" ] || die "build support-slim and slim-eval first"
+export OPENBLAS_NUM_THREADS=1
+# The support model's figure, when the CLI has one (issue: support-slim --report FILE.json).
+report_flag=""; "$slim" --help 2>&1 | grep -q -- '--report' && report_flag=1
+
+slice_both() {  # PART.stl DIR: PrusaSlicer and Cura, mean of the turns, into DIR/{prusa,cura}.txt
+  local slicer
+  for slicer in prusa cura; do
+    [ -s "$2/$slicer.txt" ] && continue
+    "$repo/tools/slice_support.sh" "$1" --slicer "$slicer" --angle 45 --turns "$turns" --build "$build" \
+      --out "$2/slices" >"$2/$slicer.txt.tmp" || die "slicing $1 with $slicer failed"
+    mv "$2/$slicer.txt.tmp" "$2/$slicer.txt"
+    rm -f "$2/slices/${slicer}"_turn*.gcode  # large; the figures are kept
+  done
+}
+
+# model_estimate REPORT.json KEY: a number from the CLI's JSON report (empty when absent).
+json_number() { [ -f "$1" ] && sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\([-+0-9.eE]*\).*/\1/p" "$1" | head -1 || true; }
+
+run_one() {  # NAME METHOD BUDGET
+  local name="$1" method="$2" budget="$3" dir="$out/$1/$2_$3" in_dir="$out/$1/input"
+  [ -s "$dir/row.tsv" ] && return 0
+  mkdir -p "$dir"
+  local started=$SECONDS report=()
+  [ -z "$report_flag" ] || report=(--report "$dir/report.json")
+  "$slim" "$in_dir/input.ply" -o "$dir/result.ply" --dir 0,0,1 --angle 45 --plate-tolerance "$(kv "$in_dir/input.txt" plate_tol)" \
+    --method "$method" --max-deviation "$budget" "${report[@]}" --quiet >"$dir/slim.log" 2>&1 ||
+    die "support-slim failed on $name ($method, $budget%): $(tail -1 "$dir/slim.log")"
+  local slim_s=$((SECONDS - started))
+  "$eval_tool" measure "$dir/result.ply" --angle 45 --reference "$in_dir/input.ply" --stl "$dir/result.stl" >"$dir/measure.txt"
+  slice_both "$dir/result.stl" "$dir"
+  "$repo/tools/hausdorff.sh" "$in_dir/input.ply" "$dir/result.ply" --diag "$(kv "$in_dir/input.txt" diag)" --out "$dir" \
+    --build "$build" >"$dir/hausdorff.txt"
+  local diag model="" before after
+  diag="$(kv "$in_dir/input.txt" diag)"
+  before="$(json_number "$dir/report.json" support_estimate_before_mm3)"; after="$(json_number "$dir/report.json" support_estimate_after_mm3)"
+  [ -z "$before" ] || [ -z "$after" ] || model="$(pct "$before" "$after")"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$method" "$budget" \
+    "$(pct "$(kv "$in_dir/prusa.txt" support_mm3)" "$(kv "$dir/prusa.txt" support_mm3)")" \
+    "$(pct "$(kv "$in_dir/cura.txt" support_mm3)" "$(kv "$dir/cura.txt" support_mm3)")" \
+    "$(awk -v h="$(kv "$dir/hausdorff.txt" hausdorff_mm)" -v d="$diag" 'BEGIN { printf "%.2f", 100 * h / d }')" \
+    "$(awk -v v="$(kv "$dir/measure.txt" volume_change_pct)" 'BEGIN { printf "%.1f", v }')" \
+    "$(awk -v v="$(kv "$dir/measure.txt" crease_share_pct)" 'BEGIN { printf "%.1f", v }')" \
+    "$(awk -v v="$(kv "$dir/measure.txt" crease_p99_deg)" 'BEGIN { printf "%.1f", v }')" \
+    "${model:-}" "$(kv "$in_dir/prusa.txt" support_mm3)" "$(kv "$dir/prusa.txt" support_mm3)" "$slim_s" \
+    "$((SECONDS - started))" >"$dir/row.tsv"
+}
+
+prepare_input() {  # NAME
+  local in_dir="$out/$1/input"
+  mkdir -p "$in_dir"
+  if [ ! -s "$in_dir/input.txt" ]; then
+    cp "$corpus/$1.ply" "$in_dir/input.ply"
+    "$eval_tool" measure "$in_dir/input.ply" --angle 45 --stl "$in_dir/input.stl" >"$in_dir/input.txt.tmp"
+    echo "plate_tol=$(awk -v d="$(kv "$in_dir/input.txt.tmp" diag)" 'BEGIN { print 1e-3 * d }')" >>"$in_dir/input.txt.tmp"
+    mv "$in_dir/input.txt.tmp" "$in_dir/input.txt"
+  fi
+  slice_both "$in_dir/input.stl" "$in_dir"
+}
+
+bench_started=$SECONDS
+IFS=, read -r -a budget_list <<<"$budgets"; IFS=, read -r -a method_list <<<"$methods"
+mapfile -t names < <(awk -F'\t' 'NR > 1 { print $1 }' "$corpus/manifest.tsv")
+if [ -n "$models" ]; then IFS=, read -r -a names <<<"$models"; fi
+for name in "${names[@]}"; do
+  [ -f "$corpus/$name.ply" ] || die "no $name.ply in $corpus"
+  [ -z "$table_only" ] || continue
+  t0=$SECONDS
+  echo "[frontier] $name" >&2
+  prepare_input "$name"
+  for method in "${method_list[@]}"; do
+    for budget in "${budget_list[@]}"; do run_one "$name" "$method" "$budget"; done
+  done
+  echo "[frontier] $name: $((SECONDS - t0)) s" >&2
+done
+
+# ---- the table ----------------------------------------------------------------------------------
+tsv="$out/frontier.tsv"
+printf 'model\tkind\tmethod\tbudget_pct\tprusa_change_pct\tcura_change_pct\thausdorff_pct\tvolume_change_pct\tcrease_share_pct\tcrease_p99_deg\tmodel_change_pct\tprusa_before_mm3\tprusa_after_mm3\tslim_s\trun_s\n' >"$tsv"
+missing=0
+for name in "${names[@]}"; do
+  kind="$(awk -F'\t' -v n="$name" '$1 == n { print $2 }' "$corpus/manifest.tsv")"
+  for method in "${method_list[@]}"; do
+    for budget in "${budget_list[@]}"; do
+      row="$out/$name/${method}_$budget/row.tsv"
+      if [ -s "$row" ]; then awk -F'\t' -v OFS='\t' -v k="$kind" '{ $1 = $1 OFS k; print }' "$row" >>"$tsv"; else missing=$((missing + 1)); fi
+    done
+  done
+done
+[ "$missing" -eq 0 ] || echo "[frontier] $missing runs not made yet (left out of the table)" >&2
+with_model="$(awk -F'\t' 'NR > 1 && $11 != "" { print "yes"; exit }' "$tsv")"
+{
+  echo "| model | kind | method | budget | PrusaSlicer | Cura | Hausdorff (% diag) | volume | crease share (p99) |$( [ -z "$with_model" ] || echo " support model |")"
+  echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |$( [ -z "$with_model" ] || echo " ---: |")"
+  awk -F'\t' -v m="$with_model" 'NR > 1 {
+    line = sprintf("| %s | %s | %s | %s%% | %s%% | %s%% | %s | %s%% | %s%% (%s°) |", $1, $2, $3, $4, $5, $6, $7, $8, $9, $10)
+    if (m != "") line = line sprintf(" %s%% |", $11)
+    print line }' "$tsv"
+} >"$out/frontier.md"
+cat "$out/frontier.md"
+
+# ---- the plot: support cut against Hausdorff distance, per model, both methods ------------------
+[ -n "$plot" ] || plot="$out/frontier.png"
+if command -v gnuplot >/dev/null 2>&1; then
+  "$repo/bench/slicer_frontier_plot.sh" "$tsv" "$plot" && echo "[frontier] plot: $plot" >&2
+else
+  echo "[frontier] gnuplot is not installed (apt-get install gnuplot-nox): no plot" >&2
+fi
+echo "[frontier] $((SECONDS - bench_started)) s" >&2

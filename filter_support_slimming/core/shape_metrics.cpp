@@ -1,0 +1,138 @@
+#include "core/shape_metrics.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Geometry>
+
+namespace slim {
+namespace {
+
+constexpr double kDegrees = 180.0 / M_PI;
+
+// One directed edge of a face: (lower vertex, higher vertex), the face, and whether the face runs
+// from the lower to the higher vertex.
+struct HalfEdge {
+  int lo, hi, face;
+  bool forward;
+};
+
+std::vector<HalfEdge> sorted_half_edges(const Triangles& F) {
+  std::vector<HalfEdge> h;
+  h.reserve(static_cast<size_t>(F.rows()) * 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      if (a == b) continue;
+      h.push_back({std::min(a, b), std::max(a, b), static_cast<int>(f), a < b});
+    }
+  }
+  std::sort(h.begin(), h.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.face < y.face;
+  });
+  return h;
+}
+
+// Signed angle (degrees) from normal n0 to normal n1 about the edge direction e (unit), e running
+// the way face 0 runs along it: positive where the surface is convex.
+double signed_dihedral(const Eigen::Vector3d& n0, const Eigen::Vector3d& n1, const Eigen::Vector3d& e) {
+  return std::atan2(n0.cross(n1).dot(e), n0.dot(n1)) * kDegrees;
+}
+
+// The interior manifold edges of a topology (faces F), ignoring geometry: pairs of half-edges.
+struct EdgePair {
+  int v0, v1, f0, f1;  // f0 runs v0 -> v1
+};
+
+std::vector<EdgePair> interior_manifold_edges(const Triangles& F) {
+  const std::vector<HalfEdge> h = sorted_half_edges(F);
+  std::vector<EdgePair> out;
+  for (size_t i = 0; i < h.size();) {
+    size_t j = i;
+    while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
+    if (j - i == 2 && h[i].forward != h[i + 1].forward && h[i].face != h[i + 1].face) {
+      const HalfEdge& fwd = h[i].forward ? h[i] : h[i + 1];
+      const HalfEdge& bwd = h[i].forward ? h[i + 1] : h[i];
+      out.push_back({fwd.lo, fwd.hi, fwd.face, bwd.face});
+    }
+    i = j;
+  }
+  return out;
+}
+
+double edge_angle(const Surface& s, const Points& normals, const EdgePair& e) {
+  const Eigen::Vector3d dir = (s.V.row(e.v1) - s.V.row(e.v0)).transpose().normalized();
+  return signed_dihedral(normals.row(e.f0).transpose(), normals.row(e.f1).transpose(), dir);
+}
+
+bool has_area(const Points& normals, int f) { return normals.row(f).squaredNorm() > 0.0; }
+
+// Length-weighted quantile q in [0, 1] of `values`.
+double weighted_quantile(const std::vector<double>& values, const std::vector<double>& weights, double q) {
+  if (values.empty()) return 0.0;
+  std::vector<size_t> order(values.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] < values[b]; });
+  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  double sum = 0.0;
+  for (size_t i : order) {
+    sum += weights[i];
+    if (sum >= q * total) return values[i];
+  }
+  return values[order.back()];
+}
+
+}  // namespace
+
+std::vector<DihedralEdge> dihedral_edges(const Surface& s) {
+  check_surface(s);
+  const Points n = face_normals(s);
+  std::vector<DihedralEdge> out;
+  for (const EdgePair& e : interior_manifold_edges(s.F)) {
+    if (!has_area(n, e.f0) || !has_area(n, e.f1)) continue;
+    out.push_back({e.v0, e.v1, e.f0, e.f1, edge_angle(s, n, e)});
+  }
+  return out;
+}
+
+ShapeChange shape_change(const Surface& input, const Surface& result, const ShapeChangeOptions& options) {
+  check_surface(input);
+  check_surface(result);
+  if (input.V.rows() != result.V.rows())
+    throw std::invalid_argument("shape change: the input has " + std::to_string(input.V.rows()) + " vertices, the result " +
+                                std::to_string(result.V.rows()) + ": not the same mesh");
+  if (input.F.rows() != result.F.rows() || input.F != result.F)
+    throw std::invalid_argument("shape change: the input and the result do not have the same faces");
+  if (!(options.crease_threshold_deg >= 0.0 && options.crease_threshold_deg < 180.0))
+    throw std::invalid_argument("shape change: the crease threshold must lie in [0, 180) degrees");
+
+  ShapeChange out;
+  out.volume_input = signed_volume(input);
+  out.volume_result = signed_volume(result);
+  out.volume_defined = out.volume_input != 0.0 && std::isfinite(out.volume_input);
+  if (out.volume_defined) out.volume_change_pct = 100.0 * (out.volume_result / out.volume_input - 1.0);
+
+  const Points n_in = face_normals(input), n_out = face_normals(result);
+  std::vector<double> change, length;
+  double creased = 0.0, total = 0.0;
+  for (const EdgePair& e : interior_manifold_edges(input.F)) {
+    if (!has_area(n_in, e.f0) || !has_area(n_in, e.f1) || !has_area(n_out, e.f0) || !has_area(n_out, e.f1)) continue;
+    const double d = std::abs(std::remainder(edge_angle(result, n_out, e) - edge_angle(input, n_in, e), 360.0));
+    const double len = (input.V.row(e.v1) - input.V.row(e.v0)).norm();
+    change.push_back(d);
+    length.push_back(len);
+    total += len;
+    if (d > options.crease_threshold_deg) creased += len;
+    out.max_crease_deg = std::max(out.max_crease_deg, d);
+  }
+  out.interior_edges = static_cast<Eigen::Index>(change.size());
+  if (total > 0.0) out.crease_share_pct = 100.0 * creased / total;
+  out.crease_p99_deg = weighted_quantile(change, length, 0.99);
+  return out;
+}
+
+}  // namespace slim

@@ -1,0 +1,131 @@
+// tools/slice_support.sh end to end with the real slicers: each figure is the mean over the
+// quarter turns, every turn is a real slicing of the turned part, and the turns are exact, so a
+// part given already turned by a quarter has the same four figures and the same mean.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "gcode_extrusion.h"
+#include "print_setup.h"
+#include "key_values.h"
+#include "run_command.h"
+#include "support/shapes.h"
+#include "vcg_adapters/mesh_io.h"
+
+using namespace slim;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path scratch(const std::string& name) { return test::scratch_dir(SLIM_EVAL_OUT_DIR, name); }
+std::map<std::string, double> parse_metrics(const std::string& text) { return test::parse_key_values(text); }
+
+test::CommandRun slice(const fs::path& stl, const std::string& slicer, const fs::path& out, const std::string& more = "") {
+  return test::run_command(test::shell_quote(SLIM_SOURCE_DIR "/tools/slice_support.sh") + " " + test::shell_quote(stl.string()) +
+                           " --slicer " + slicer + " --angle 45 --build " + test::shell_quote(SLIM_BINARY_DIR) + " --out " +
+                           test::shell_quote(out.string()) + " " + more);
+}
+
+struct Extent {
+  double support_mm3, dx, dy;
+};
+Extent measure(const fs::path& gcode) {
+  std::ifstream in(gcode);
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  const eval::GcodeExtrusion g = eval::measure_extrusion(in, [&](const eval::ExtrusionMove& m) {
+    for (int a = 0; a < 2; ++a) {
+      lo[a] = std::min({lo[a], m.from[a], m.to[a]});
+      hi[a] = std::max({hi[a], m.from[a], m.to[a]});
+    }
+  });
+  return {g.support_mm() * eval::filament_area(1.75), hi[0] - lo[0], hi[1] - lo[1]};
+}
+
+// The refined arch in the print frame (+Z up, on the plate, 60 mm), and the same turned by 90°.
+fs::path write_arch(const fs::path& dir) {
+  const eval::PrintFrame f = eval::to_print_frame(test::refined(test::arch(), 1), Eigen::Vector3d::UnitZ(), 60.0);
+  const fs::path stl = dir / "arch.stl";
+  vcgx::save_surface(stl.string(), f.surface);
+  return stl;
+}
+
+void expect_mean_of_turns(const std::string& slicer) {
+  const fs::path dir = scratch("slice_support_" + slicer);
+  const fs::path arch = write_arch(dir);
+  const test::CommandRun run = slice(arch, slicer, dir / "plain");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::map<std::string, double> m = parse_metrics(run.output);
+
+  double sum = 0.0, lo = 1e300, hi = 0.0;
+  std::map<int, Extent> turn;
+  for (int t : {0, 90, 180, 270}) {
+    turn[t] = measure(dir / "plain" / (slicer + "_turn" + std::to_string(t) + ".gcode"));
+    EXPECT_NEAR(m.at("support_mm3_turn" + std::to_string(t)), turn[t].support_mm3, 1e-4 * turn[t].support_mm3) << t;
+    EXPECT_GT(turn[t].support_mm3, 1000.0) << t;  // the arch's opening needs support
+    sum += turn[t].support_mm3;
+    lo = std::min(lo, turn[t].support_mm3);
+    hi = std::max(hi, turn[t].support_mm3);
+  }
+  EXPECT_NEAR(m.at("support_mm3"), sum / 4, 1e-4 * sum / 4);
+  EXPECT_NEAR(m.at("support_mm3_min"), lo, 1e-4 * lo);
+  EXPECT_NEAR(m.at("support_mm3_max"), hi, 1e-4 * hi);
+  EXPECT_NEAR(m.at("spread_pct"), 100 * (hi - lo) / (sum / 4), 0.01);
+  // Each turn slices the part turned: a quarter turn swaps the tool path's X and Y extents.
+  EXPECT_GT(turn[0].dx, 1.5 * turn[0].dy);  // the arch is 60 long, 20 deep
+  EXPECT_NEAR(turn[90].dx, turn[0].dy, 0.5);
+  EXPECT_NEAR(turn[90].dy, turn[0].dx, 0.5);
+
+  // The arch given already turned by a quarter: exactly the same four poses, so the same
+  // figures (turn 0 of the turned arch is turn 90 of the arch) and the same mean. The files
+  // list the same triangles in another order (the STL reader welds by position), which moves
+  // PrusaSlicer's figure by about 1e-5: far below the turns' spread (a few percent).
+  const fs::path turned = dir / "arch_turned.stl";
+  const test::CommandRun t = test::run_command(test::shell_quote(SLIM_BINARY_DIR "/tools/slim-eval") + " turn " +
+                                               test::shell_quote(arch.string()) + " " + test::shell_quote(turned.string()) +
+                                               " --quarter-turns 1");
+  ASSERT_EQ(t.exit_code, 0) << t.output;
+  const test::CommandRun run2 = slice(turned, slicer, dir / "turned");
+  ASSERT_EQ(run2.exit_code, 0) << run2.output;
+  const std::map<std::string, double> m2 = parse_metrics(run2.output);
+  EXPECT_NEAR(m2.at("support_mm3_turn0"), m.at("support_mm3_turn90"), 1e-3 * m.at("support_mm3_turn90"));
+  EXPECT_NEAR(m2.at("support_mm3_turn270"), m.at("support_mm3_turn0"), 1e-3 * m.at("support_mm3_turn0"));
+  EXPECT_NEAR(m2.at("support_mm3"), m.at("support_mm3"), 1e-3 * m.at("support_mm3"));
+}
+
+}  // namespace
+
+TEST(SliceSupport, PrusaSlicerFigureIsTheMeanOfFourTurnedSlicings) { expect_mean_of_turns("prusa"); }
+
+TEST(SliceSupport, CuraFigureIsTheMeanOfFourTurnedSlicings) { expect_mean_of_turns("cura"); }
+
+TEST(SliceSupport, BothSlicersSeeTheSameOverhang) {
+  // The same arch opening under both slicers' defaults: their support differs in pattern and
+  // density, not in where it stands, so the figures agree within a factor of two.
+  const fs::path dir = scratch("slice_support_both");
+  const fs::path arch = write_arch(dir);
+  const test::CommandRun p = slice(arch, "prusa", dir, "--turns 0"), c = slice(arch, "cura", dir, "--turns 0");
+  ASSERT_EQ(p.exit_code, 0) << p.output;
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const double prusa = parse_metrics(p.output).at("support_mm3"), cura = parse_metrics(c.output).at("support_mm3");
+  EXPECT_GT(cura, 0.5 * prusa);
+  EXPECT_LT(cura, 2.0 * prusa);
+  // PrusaSlicer's own total agrees with our sum of all extrusion.
+  EXPECT_LT(parse_metrics(p.output).at("total_vs_slicer_pct"), 0.01);
+}
+
+TEST(SliceSupport, BadArgumentsFailWithAOneLineReason) {
+  const fs::path dir = scratch("slice_support_bad");
+  const fs::path arch = write_arch(dir);
+  for (const std::string& args : {std::string("--slicer simplify3d"), std::string("--slicer prusa --turns 45"),
+                                  std::string("--slicer cura --turns 0,"), std::string("--slicer prusa --jobs 0")}) {
+    const test::CommandRun r = test::run_command(test::shell_quote(SLIM_SOURCE_DIR "/tools/slice_support.sh") + " " +
+                                                 test::shell_quote(arch.string()) + " --angle 45 --out " +
+                                                 test::shell_quote((dir / "o").string()) + " " + args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(r.output.rfind("slice_support: ", 0), 0u) << args << ": " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
+  }
+}
