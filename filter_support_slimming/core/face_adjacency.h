@@ -10,6 +10,7 @@
 //   across        3 #F: across[3 f + k] is the face on the other side of face f's edge k (from
 //                 F(f, k) to F(f, k + 1 mod 3)) when exactly one other face uses that edge and runs
 //                 along it the other way (a manifold, consistently oriented edge); -1 otherwise.
+//   opposite      3 #F: that face's vertex opposite the edge; -1 with across.
 // Cost: O(#F) (a counting sort by vertex, then a look at the few faces around each vertex).
 #pragma once
 
@@ -20,7 +21,7 @@
 namespace slim {
 
 struct FaceAdjacency {
-  std::vector<int> vertex_begin, vertex_face, across;
+  std::vector<int> vertex_begin, vertex_face, across, opposite;
 };
 
 FaceAdjacency face_adjacency(const Surface& surface);

@@ -107,6 +107,7 @@ SupportEstimate estimate_support(const Surface& surface, const SupportModelOptio
   rule.max_slope_deg = 90.0 - o.alpha_max_deg + o.threshold_slack_deg;
   rule.dense_slope_deg = std::atan(o.layer_height / o.dense_interface_overhang) * 180.0 / M_PI;
   rule.layer_height = o.layer_height;
+  rule.first_layer_height = o.first_layer_height;
   rule.creases = o.bottom_creases;
   rule.tips = o.lowest_points;
   const ThreadScope threads(o.threads);

@@ -8,6 +8,8 @@
 #include <Eigen/Geometry>
 
 #include "core/face_adjacency.h"
+#include "core/triangle_cells.h"
+#include "core/union_find.h"
 
 namespace slim {
 namespace {
@@ -44,13 +46,11 @@ struct Crossing {
   }
 };
 
-// Pixel index range [lo, hi] of pixel centres (centres = true) or squares (false) that a 1D extent
-// [a, b] reaches, clamped to [0, n - 1]; lo > hi when none.
-void pixel_range(double a, double b, double origin, double pixel, int n, bool centres, int& lo, int& hi) {
+// Pixel index range [lo, hi] of the pixel centres that a 1D extent [a, b] reaches, clamped to
+// [0, n - 1]; lo > hi when none.
+void pixel_range(double a, double b, double origin, double pixel, int n, int& lo, int& hi) {
   const double u = (a - origin) / pixel, v = (b - origin) / pixel;
-  // Squares are closed: an extent ending exactly on a pixel boundary touches both pixels.
-  const double l = centres ? std::ceil(u - 0.5) : std::ceil(u) - 1.0;
-  const double h = centres ? std::floor(v - 0.5) : std::floor(v);
+  const double l = std::ceil(u - 0.5), h = std::floor(v - 0.5);
   lo = static_cast<int>(std::max(0.0, std::min(l, static_cast<double>(n))));
   hi = static_cast<int>(std::max(-1.0, std::min(h, static_cast<double>(n - 1))));
 }
@@ -81,8 +81,8 @@ void rasterize_solid(const Surface& s, const PixelGrid& g, SupportRaster& out) {
     if (!(std::abs(area2) > 0)) continue;  // seen edge on: no ray crosses it
     const int orient = area2 > 0 ? 1 : -1;  // +1: counter-clockwise from above, looking up
     int i0, i1, j0, j1;
-    pixel_range(std::min({q[0].x(), q[1].x(), q[2].x()}), std::max({q[0].x(), q[1].x(), q[2].x()}), g.x0, g.pixel, g.nx, true, i0, i1);
-    pixel_range(std::min({q[0].y(), q[1].y(), q[2].y()}), std::max({q[0].y(), q[1].y(), q[2].y()}), g.y0, g.pixel, g.ny, true, j0, j1);
+    pixel_range(std::min({q[0].x(), q[1].x(), q[2].x()}), std::max({q[0].x(), q[1].x(), q[2].x()}), g.x0, g.pixel, g.nx, i0, i1);
+    pixel_range(std::min({q[0].y(), q[1].y(), q[2].y()}), std::max({q[0].y(), q[1].y(), q[2].y()}), g.y0, g.pixel, g.ny, j0, j1);
     for (int j = j0; j <= j1; ++j) {
       for (int i = i0; i <= i1; ++i) {
         const Vec2 c(g.x0 + (i + 0.5) * g.pixel, g.y0 + (j + 0.5) * g.pixel);
@@ -116,68 +116,37 @@ void rasterize_solid(const Surface& s, const PixelGrid& g, SupportRaster& out) {
   out.span_begin[g.count()] = static_cast<int>(out.spans.size());
 }
 
-// Marks every pixel whose square the triangle (a, b, c) overlaps (separating axes: the pixel
-// range covers the bounding box, the edge functions the rest) with the triangle's z range there.
-void mark_triangle(const Vec3& a, const Vec3& b, const Vec3& c, bool dense, const PixelGrid& g,
-                   std::vector<PixelOverhang>& out) {
-  const Vec2 q[3] = {a.head<2>(), b.head<2>(), c.head<2>()};
-  double area2 = cross2(q[1] - q[0], q[2] - q[0]);
-  if (!(std::abs(area2) > 0)) return;
-  const double orient = area2 > 0 ? 1.0 : -1.0;
-  // z = a.z + gx (x - a.x) + gy (y - a.y) over the triangle's plane.
-  const Vec2 e1 = q[1] - q[0], e2 = q[2] - q[0];
-  const double gx = ((b.z() - a.z()) * e2.y() - (c.z() - a.z()) * e1.y()) / area2;
-  const double gy = ((c.z() - a.z()) * e1.x() - (b.z() - a.z()) * e2.x()) / area2;
-  const double zmin = std::min({a.z(), b.z(), c.z()}), zmax = std::max({a.z(), b.z(), c.z()});
-  int i0, i1, j0, j1;
-  pixel_range(std::min({q[0].x(), q[1].x(), q[2].x()}), std::max({q[0].x(), q[1].x(), q[2].x()}), g.x0, g.pixel, g.nx, false, i0, i1);
-  pixel_range(std::min({q[0].y(), q[1].y(), q[2].y()}), std::max({q[0].y(), q[1].y(), q[2].y()}), g.y0, g.pixel, g.ny, false, j0, j1);
-  const double half = 0.5 * g.pixel, slope = (std::abs(gx) + std::abs(gy)) * half;
-  for (int j = j0; j <= j1; ++j) {
-    for (int i = i0; i <= i1; ++i) {
-      const Vec2 centre(g.x0 + (i + 0.5) * g.pixel, g.y0 + (j + 0.5) * g.pixel);
-      bool overlaps = true;
-      for (int k = 0; k < 3 && overlaps; ++k) {
-        const Vec2 e = q[(k + 1) % 3] - q[k];
-        // The largest edge function over the square's corners: at the centre plus the half-extent
-        // along the edge's normal, |e.x| + |e.y| times half a pixel.
-        const double best = orient * cross2(e, centre - q[k]) + (std::abs(e.x()) + std::abs(e.y())) * half;
-        overlaps = best >= 0;
-      }
-      if (!overlaps) continue;
-      const double zc = a.z() + gx * (centre.x() - a.x()) + gy * (centre.y() - a.y());
-      out.push_back({i + g.nx * j, std::max(zmin, zc - slope), std::min(zmax, zc + slope), dense});
-    }
+// Pixels and object layers as the voxels of a grid: pixel (i, j) across, and along z the layer
+// whose slice first meets a surface at that height, so the voxel (i, j, k) of a feature says "it
+// shows in pixel (i, j) at layer k". Layer k >= 1 covers [slice_z(k - 1), slice_z(k)] with
+// slice_z(k) = first + (k - 0.5) · height: grid z = (z - first) / height + 1.5 (the first layer's
+// own thickness only shifts features below its slice, which get no support anyway).
+struct LayerVoxels {
+  VoxelGrid grid;
+  double x0, y0, pixel, first, height;
+  LayerVoxels(const PixelGrid& g, const OverhangRule& rule, double top)
+      : x0(g.x0), y0(g.y0), pixel(g.pixel), first(rule.first_layer_height), height(rule.layer_height) {
+    grid.cells = Eigen::Vector3i(g.nx, g.ny, static_cast<int>(std::max(0.0, layer(top))) + 2);
   }
-}
+  double layer(double z) const { return (z - first) / height + 1.5; }
+  Vec3 to_grid(const Vec3& p) const { return Vec3((p.x() - x0) / pixel, (p.y() - y0) / pixel, layer(p.z())); }
+};
 
-// Marks every pixel whose square the segment a-b crosses, with the segment's z range inside it
-// (Liang-Barsky clipping of the segment to the square).
-void mark_segment(const Vec3& a, const Vec3& b, bool dense, const PixelGrid& g, std::vector<PixelOverhang>& out) {
-  int i0, i1, j0, j1;
-  pixel_range(std::min(a.x(), b.x()), std::max(a.x(), b.x()), g.x0, g.pixel, g.nx, false, i0, i1);
-  pixel_range(std::min(a.y(), b.y()), std::max(a.y(), b.y()), g.y0, g.pixel, g.ny, false, j0, j1);
-  const Vec3 d = b - a;
-  for (int j = j0; j <= j1; ++j) {
-    for (int i = i0; i <= i1; ++i) {
-      const double lo[2] = {g.x0 + i * g.pixel, g.y0 + j * g.pixel};
-      double t0 = 0.0, t1 = 1.0;
-      for (int axis = 0; axis < 2 && t0 <= t1; ++axis) {
-        const double o = a[axis], v = d[axis], l = lo[axis], h = lo[axis] + g.pixel;
-        if (v == 0) {
-          if (o < l || o > h) t1 = -1.0;
-          continue;
-        }
-        double ta = (l - o) / v, tb = (h - o) / v;
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-      }
-      if (t0 > t1) continue;
-      const double za = a.z() + t0 * d.z(), zb = a.z() + t1 * d.z();
-      out.push_back({i + g.nx * j, std::min(za, zb), std::max(za, zb), dense});
+// Marks every pixel the feature (a triangle, or a segment a-b given as the triangle a, b, b)
+// overlaps, with the layers it meets there: the voxel rasterizer of the domain, exact (closed
+// cells, so a feature ending on a boundary touches both sides).
+void mark_feature(const LayerVoxels& v, const Vec3& a, const Vec3& b, const Vec3& c, bool dense, std::vector<PixelOverhang>& out) {
+  const int nx = v.grid.cells(0);
+  int last = -1;
+  cells_overlapping_triangle(v.grid, v.to_grid(a), v.to_grid(b), v.to_grid(c), 0.0, [&](int i, int j, int k) {
+    const int pixel = i + nx * j;
+    if (pixel == last && out.back().layer_high + 1 >= k) {  // k innermost: extend the run
+      out.back().layer_high = std::max(out.back().layer_high, k);
+      return;
     }
-  }
+    out.push_back({pixel, k, k, dense});
+    last = pixel;
+  });
 }
 
 // Whether face vertex c lies above the line through a and b (at c's horizontal position), so the
@@ -223,13 +192,8 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
   const int nf = static_cast<int>(s.F.rows());
   const double cos_max = std::cos(rule.max_slope_deg * M_PI / 180.0), cos_dense = std::cos(rule.dense_slope_deg * M_PI / 180.0);
   std::vector<char> kind(static_cast<size_t>(nf), 0);
-  std::vector<int> parent(static_cast<size_t>(nf));
-  auto root = [&](int f) {
-    while (parent[f] != f) f = parent[f] = parent[parent[f]];
-    return f;
-  };
+  UnionFind regions(nf);
   for (int f = 0; f < nf; ++f) {
-    parent[f] = f;
     const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
     const Vec3 n = (b - a).cross(c - a);
     const double len = n.norm();
@@ -239,12 +203,12 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3 && kind[f]; ++k) {
       const int g = adj.across[3 * f + k];
-      if (g >= 0 && kind[g]) parent[root(f)] = root(g);  // deterministic: no ranks, fixed order
+      if (g >= 0 && kind[g]) regions.join(f, g);
     }
   std::vector<double> area(static_cast<size_t>(nf), 0.0), outline(static_cast<size_t>(nf), 0.0);
   for (int f = 0; f < nf; ++f) {
     if (!kind[f]) continue;
-    const int r = root(f);
+    const int r = regions.find(f);
     const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
     area[r] += 0.5 * std::abs(cross2((b - a).head<2>(), (c - a).head<2>()));
     for (int k = 0; k < 3; ++k) {
@@ -257,7 +221,7 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
   const double reach_dense = rule.layer_height / std::tan(rule.dense_slope_deg * M_PI / 180.0);
   for (int f = 0; f < nf; ++f) {
     if (!kind[f]) continue;
-    const int r = root(f);
+    const int r = regions.find(f);
     const double width = outline[r] > 0 ? 2.0 * area[r] / outline[r] : INFINITY;
     kind[f] = width > reach ? (kind[f] == 2 && width > reach_dense ? 2 : 1) : 0;
   }
@@ -267,7 +231,7 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
 // Bottom creases and lowest vertices: the first slice of a keel or a tip is an island with nothing
 // below it, which slicers support whatever the slope of the faces around it. The faces around each
 // vertex (counting sort, no hashing) give every edge's other face.
-void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule, const PixelGrid& g,
+void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule, const LayerVoxels& voxels,
                            std::vector<PixelOverhang>& out) {
   const double cos_max_slope = std::cos(rule.max_slope_deg * M_PI / 180.0);
   const double reach_overhang = 1.0 / std::tan(rule.max_slope_deg * M_PI / 180.0);
@@ -286,15 +250,12 @@ void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const Ove
       if (!(len > 0) || !(e.head<2>().norm() / len > cos_max_slope) || !rises_from(a, b, c)) continue;
       // Once per edge (from its lower face index), manifold, the other face rising too, and convex:
       // the other face's third vertex behind this face's plane.
-      const int twin = adj.across[3 * f + k];
-      if (twin < f) continue;
-      int x = -1;
-      for (int m = 0; m < 3; ++m)
-        if (s.F(twin, m) != u && s.F(twin, m) != v) x = s.F(twin, m);
+      if (adj.across[3 * f + k] < f) continue;
+      const int x = adj.opposite[3 * f + k];
       const Vec3 d = vertex(x), n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
       if (!rises_from(b, a, d) || !(n1.dot(d - a) < 0)) continue;
       const double reach = crease_reach(a, b, n1, n2);
-      if (reach > reach_overhang) mark_segment(a, b, reach > reach_dense, g, out);
+      if (reach > reach_overhang) mark_feature(voxels, a, b, b, reach > reach_dense, out);
     }
   }
   for (int v = 0; v < nv && rule.tips; ++v) {
@@ -304,9 +265,8 @@ void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const Ove
       for (int m = 0; m < 3; ++m)
         if (s.F(around[i], m) != v) lowest = std::min(lowest, s.V(s.F(around[i], m), 2));
     if (!(s.V(v, 2) < lowest)) continue;
-    const double i = std::floor((s.V(v, 0) - g.x0) / g.pixel), j = std::floor((s.V(v, 1) - g.y0) / g.pixel);
-    if (i >= 0 && j >= 0 && i < g.nx && j < g.ny)
-      out.push_back({static_cast<int>(i) + g.nx * static_cast<int>(j), s.V(v, 2), s.V(v, 2), true});
+    const Vec3 p = s.V.row(v);
+    mark_feature(voxels, p, p, p, true, out);
   }
 }
 
@@ -320,13 +280,14 @@ SupportRaster build_support_raster(const Surface& s, const PixelGrid& g, const O
   out.grid = g;
   rasterize_solid(s, g, out);
   const FaceAdjacency adj = face_adjacency(s);
+  const LayerVoxels voxels(g, rule, s.V.col(2).maxCoeff());
   const std::vector<char> kind = overhanging_faces(s, adj, rule);
   for (Eigen::Index f = 0; f < s.F.rows(); ++f)
-    if (kind[f]) mark_triangle(s.V.row(s.F(f, 0)), s.V.row(s.F(f, 1)), s.V.row(s.F(f, 2)), kind[f] == 2, g, out.overhangs);
-  mark_creases_and_tips(s, adj, rule, g, out.overhangs);
+    if (kind[f]) mark_feature(voxels, s.V.row(s.F(f, 0)), s.V.row(s.F(f, 1)), s.V.row(s.F(f, 2)), kind[f] == 2, out.overhangs);
+  mark_creases_and_tips(s, adj, rule, voxels, out.overhangs);
   sort_by_pixel(out.overhangs, g.count(), [](const PixelOverhang& x, const PixelOverhang& y) {
-    if (x.z_low != y.z_low) return x.z_low < y.z_low;
-    if (x.z_high != y.z_high) return x.z_high < y.z_high;
+    if (x.layer_low != y.layer_low) return x.layer_low < y.layer_low;
+    if (x.layer_high != y.layer_high) return x.layer_high < y.layer_high;
     return x.dense < y.dense;
   });
   return out;

@@ -14,10 +14,12 @@
 //             vertical ray through its centre, sorted upwards: where the faces the ray crosses
 //             wind around it (nonzero rule, so an inside-out part reads the same). Rasterised
 //             watertight: a centre on a shared edge or vertex is counted by one face only.
-//   overhangs for every pixel that an overhanging feature touches (its square overlaps the
+//   overhangs for every pixel that an overhanging feature touches (its closed square overlaps the
 //             feature's projection: conservative, so the slicer's stretching of any contact to
-//             a whole grid cell is exact), the z range of the feature over the pixel and
-//             whether it wants a dense interface. Features:
+//             a whole grid cell is exact), the object layers the feature shows in there (layer
+//             k >= 1: its part between the slices of layers k - 1 and k; the voxel rasterizer of
+//             triangle_cells.h over pixels × layers) and whether it wants a dense interface.
+//             Features:
 //               - a face less steep than rule.max_slope_deg (dense when less steep than
 //                 rule.dense_slope_deg), in a connected region of such faces wider than what the
 //                 slicer sees from one layer to the next (layer_height / tan(slope)): a lip or
@@ -48,7 +50,8 @@ struct PixelGrid {
 struct OverhangRule {
   double max_slope_deg = 46.0;    // features less steep than this (from the horizontal) overhang
   double dense_slope_deg = 36.5;  // overhangs less steep than this want a dense interface
-  double layer_height = 0.2;      // mm: a region of overhanging faces narrower than
+  double first_layer_height = 0.2;  // mm: the slicer's layers, to say in which one a feature shows
+  double layer_height = 0.2;      // mm; also: a region of overhanging faces narrower than
                                   // layer_height / tan(max_slope_deg) is not seen by the slicer
   bool creases = true;            // bottom creases overhang (keels)
   bool tips = true;               // lowest vertices overhang
@@ -60,7 +63,7 @@ struct SolidSpan {
 
 struct PixelOverhang {
   int pixel = 0;
-  double z_low = 0.0, z_high = 0.0;  // mm, the feature's z range over the pixel
+  int layer_low = 0, layer_high = 0;  // the object layers the feature shows in over the pixel
   bool dense = false;
 };
 

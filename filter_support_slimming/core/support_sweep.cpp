@@ -74,9 +74,10 @@ SweepRates sweep_rates(const GridSweepSettings& s, const SlicerLayers& layers, d
   auto spacing = [&](double height) { return s.extrusion_width - height * (1.0 - M_PI / 4.0); };
   const double at_t = spacing(t), at_layer = spacing(layers.height), at_first = spacing(layers.first_height);
   SweepRates r;
-  r.fill_per_mm3 = at_t / s.grid_spacing;  // one line per cell
-  r.sheath_per_mm2 = at_t;
-  r.fill_inset = 0.4 * at_layer;
+  r.line_per_mm2 = at_t;
+  // The island's outline lies half a line spacing past the cells, less half a width (a closing);
+  // the fill area is 0.4 spacings inside it, and its lines stop half a spacing short of that.
+  r.fill_end = 0.5 * s.extrusion_width + 0.4 * at_layer;
   r.interface_per_mm3 = at_t / at_layer;   // dense: one line per line spacing
   r.interface_depth = s.interface_layers * t / layers.height;
   // A landing: a bridging contact layer (round lines of the nozzle's diameter, a line spacing
@@ -85,7 +86,7 @@ SweepRates sweep_rates(const GridSweepSettings& s, const SlicerLayers& layers, d
     const double bridge = M_PI / 4.0 * s.nozzle_diameter * s.nozzle_diameter / at_layer;
     const double below = s.interface_layers - 1.0;
     r.bottom_interface_per_mm2 =
-        std::max(0.0, bridge + below * t * r.interface_per_mm3 - (s.nozzle_diameter + below * t) * r.fill_per_mm3);
+        std::max(0.0, bridge + below * t * r.interface_per_mm3 - (s.nozzle_diameter + below * t) * at_t / s.grid_spacing);
   }
   r.first_fill_per_mm2 = s.first_layer_density * layers.first_height;
   r.first_sheath_per_mm = layers.first_height * at_first;
@@ -138,9 +139,9 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
     trimmed_first_[p] = !trim.empty() && trim.front().first == 0;
     for (; mark < raster.overhangs.size() && raster.overhangs[mark].pixel == p; ++mark) {
       const PixelOverhang& o = raster.overhangs[mark];
-      const int k_low = L.first_slice_at_or_above(o.z_low);
+      const int k_low = o.layer_low;
       if (k_low >= count || (k_low > 0 && covers(solid, k_low - 1))) continue;  // hidden inside the part
-      const int high = contact_layer(std::min(count - 1, L.first_slice_at_or_above(o.z_high)));
+      const int high = contact_layer(std::min(count - 1, o.layer_high));
       if (high < 0) continue;
       const int low = std::max(0, contact_layer(k_low));
       append_merged(contact, low, high);
@@ -265,6 +266,53 @@ struct PhaseState {
   }
 };
 
+// One layer's columns in figures: the base and interface areas, the base islands' outline (cell
+// sides facing no base cell, and the part's outline inside base cells) where the sheath runs, and
+// the base fill. PrusaSlicer's support lines run along x one grid cell apart, on the cell
+// boundaries (its fill pattern is anchored where the grid is), so inside an island they lie on the
+// boundaries between base cells, each ending fill_end short of the island's outline, and joined
+// into a zigzag by links along the outline.
+struct LayerFigures {
+  double base_area = 0.0, interface_area = 0.0, outline = 0.0, fill_length = 0.0, contact_area = 0.0;
+};
+
+LayerFigures layer_figures(const PhaseState& st, const CellMap& map, const PixelGrid& grid, const GridSweepSettings& settings,
+                           double fill_end, int j) {
+  const int S = settings.pixels_per_cell, cells = map.cx * map.cy;
+  const double p = grid.pixel, p2 = p * p, full = static_cast<double>(S) * S;
+  auto base = [&](int c) { return c >= 0 && c < cells && st.state_layer[c] == j && st.interface_weight[c] < 0.5; };
+  const int neighbour[4] = {-1, 1, -map.cx, map.cx};
+  LayerFigures f;
+  for (int c : st.now) {
+    const PhaseState::Counters& k = st.count[c];
+    const double area = std::max(0.0, (full - k.kind[GridSupportSweep::kTrim]) * p2 - settings.xy_gap * k.kind[GridSupportSweep::kOutline] * p * kStaircase);
+    const double w = st.interface_weight[c];
+    f.base_area += (1.0 - w) * area;
+    f.interface_area += w * area;
+    if (k.kind[GridSupportSweep::kContact] > 0) f.contact_area += area;
+    if (!base(c)) continue;
+    if (settings.sheath) {
+      f.outline += k.kind[GridSupportSweep::kOutline] * p * kStaircase;
+      for (int s = 0; s < 4; ++s)
+        if (!base(c + neighbour[s])) f.outline += (S - k.side_trimmed[s]) * p;
+    }
+    // The line on the boundary with the cell above, and the link between it and the line below
+    // where both end in this cell (the fill joins consecutive lines along the island's edge,
+    // alternately at either end: half a link per such end).
+    const int up = c + map.cx, down = c - map.cx;
+    const bool line_up = base(up), line_down = base(down);
+    if (line_up) f.fill_length += std::min(S - k.side_trimmed[3], S - st.count[up].side_trimmed[2]) * p;
+    for (int side : {-1, 1}) {
+      const bool end_up = line_up && !(base(c + side) && base(up + side));
+      const bool end_down = line_down && !(base(c + side) && base(down + side));
+      if (end_up) f.fill_length -= fill_end;
+      if (end_up && end_down) f.fill_length += 0.5 * (S - k.side_trimmed[side < 0 ? 0 : 1]) * p;
+    }
+  }
+  f.fill_length = std::max(0.0, f.fill_length);
+  return f;
+}
+
 }  // namespace
 
 GridSweepResult GridSupportSweep::run(int ox, int oy) const {
@@ -273,8 +321,7 @@ GridSweepResult GridSupportSweep::run(int ox, int oy) const {
   const CellMap map(grid_, S, ox, oy);
   const int cells = map.cx * map.cy;
   PhaseState st(cells, S);
-  const double p = grid_.pixel, p2 = p * p, full = static_cast<double>(S) * S;
-  const int neighbour[4] = {-1, 1, -map.cx, map.cx};
+  const double p2 = grid_.pixel * grid_.pixel, full = static_cast<double>(S) * S;
   GridSweepResult out;
   out.layer.assign(static_cast<size_t>(layers_.count), 0.0);
   for (int j = top_layer_; j >= 0; --j) {
@@ -314,27 +361,13 @@ GridSweepResult GridSupportSweep::run(int ox, int oy) const {
     out.landing_area += landing;
     out.bottom_interface += landing * rate.bottom_interface_per_mm2;
     out.layer[j] += landing * rate.bottom_interface_per_mm2;
-    // Areas, the sheath of the base islands, material.
-    double base_area = 0.0, interface_area = 0.0, outline = 0.0;
-    for (int c : st.now) {
-      const double area = std::max(0.0, (full - st.count[c].kind[kTrim]) * p2 - settings_.xy_gap * st.count[c].kind[kOutline] * p * kStaircase);
-      const double w = st.interface_weight[c];
-      base_area += (1.0 - w) * area;
-      interface_area += w * area;
-      if (st.count[c].kind[kContact] > 0) out.contact_area += area;
-      if (!settings_.sheath || w >= 0.5) continue;
-      outline += st.count[c].kind[kOutline] * p * kStaircase;
-      for (int s = 0; s < 4; ++s) {
-        const int n = c + neighbour[s];
-        const bool base_neighbour = n >= 0 && n < cells && st.state_layer[n] == j && st.interface_weight[n] < 0.5;
-        if (!base_neighbour) outline += (S - st.count[c].side_trimmed[s]) * p;
-      }
-    }
+    const LayerFigures f = layer_figures(st, map, grid_, settings_, rate.fill_end, j);
+    out.contact_area += f.contact_area;
     const double t = layers_.thickness(j);
-    out.column_volume += t * (base_area + interface_area);
+    out.column_volume += t * (f.base_area + f.interface_area);
     if (j > 0) {
-      const double fill = t * std::max(0.0, base_area - rate.fill_inset * outline) * rate.fill_per_mm3;
-      const double sheath = t * outline * rate.sheath_per_mm2, dense = t * interface_area * rate.interface_per_mm3;
+      const double fill = t * f.fill_length * rate.line_per_mm2;
+      const double sheath = t * f.outline * rate.line_per_mm2, dense = t * f.interface_area * rate.interface_per_mm3;
       out.base_fill += fill;
       out.sheath += sheath;
       out.top_interface += dense;

@@ -24,8 +24,9 @@
 //     interface_layers dense layers;
 //   - cells within that depth below a dense contact are interface, the rest base; the
 //     base islands get a sheath along their outline (cell sides facing non-base cells, and the
-//     part's outline inside them); pixels where a column meets the part's top get a bottom
-//     interface;
+//     part's outline inside them) and fill lines along x on the cell boundaries inside them
+//     (PrusaSlicer anchors its support lines where the grid is, one cell apart); pixels where a
+//     column meets the part's top get a bottom interface;
 //   - the first layer: the columns' pixels grown by first_layer_expansion around, not through, the
 //     part, at its own density, with a sheath.
 // Pixel outlines are staircases; their length is scaled by pi/4 (the mean ratio for outlines of
@@ -66,12 +67,13 @@ struct GridSweepSettings {
   double first_layer_expansion = 3.0;     // mm
 };
 
-// The material of one support layer of thickness t, per unit (mm³ per mm² of area and mm of
-// height, or per mm of outline and mm of height): lines of width w are t × (w - t(1 - pi/4)) in
-// section (PrusaSlicer's rounded rectangle), the fill one grid cell apart, the interfaces one line
-// spacing (at the object's layer height) apart.
+// The material of one support layer of thickness t, per unit: lines of width w are
+// t × (w - t(1 - pi/4)) in section (PrusaSlicer's rounded rectangle), so a mm of line per mm of
+// height is line_per_mm2 mm³; the interfaces are lines one line spacing (at the object's layer
+// height) apart (interface_per_mm3 per mm² and mm of height); a base fill line ends fill_end
+// short of the cell boundary where its island ends.
 struct SweepRates {
-  double fill_per_mm3 = 0.0, sheath_per_mm2 = 0.0, fill_inset = 0.0, interface_per_mm3 = 0.0;
+  double line_per_mm2 = 0.0, fill_end = 0.0, interface_per_mm3 = 0.0;
   double bottom_interface_per_mm2 = 0.0;  // a landing: bridging contact and dense layers, less the
                                           // fill they replace
   double interface_depth = 0.0;           // object layers of top interface under a dense contact

@@ -83,7 +83,7 @@ TEST(SupportRaster, OverhangsMarkEveryPixelTheirFacesTouch) {
   std::set<int> marked, touched;
   for (const PixelOverhang& o : r.overhangs) {
     marked.insert(o.pixel);
-    EXPECT_LE(o.z_low, o.z_high);
+    EXPECT_LE(o.layer_low, o.layer_high);
     EXPECT_TRUE(o.dense);
   }
   const Points n = face_normals(s);
@@ -106,9 +106,9 @@ TEST(SupportRaster, KeelRidgesAndLowestPointsOverhangWhateverTheirFaces) {
   s.F << 0, 2, 1, 0, 3, 2, 0, 4, 3, 0, 1, 4, 1, 2, 3, 1, 3, 4;
   const SupportRaster r = build_support_raster(s, grid_over(s, 0.5), {});
   ASSERT_FALSE(r.overhangs.empty());
-  double lowest = INFINITY;
-  for (const PixelOverhang& o : r.overhangs) lowest = std::min(lowest, o.z_low);
-  EXPECT_NEAR(lowest, 5.0, 1e-9);
+  int lowest = 1 << 30;
+  for (const PixelOverhang& o : r.overhangs) lowest = std::min(lowest, o.layer_low);
+  EXPECT_EQ(lowest, 25);  // the layer whose slice (at 5.1) first meets the tip at z = 5
   OverhangRule steep;
   steep.max_slope_deg = 30.0;  // the edges slope 40.2 degrees: only the tip is left
   EXPECT_EQ(build_support_raster(s, grid_over(s, 0.5), steep).overhangs.size(), 1u);
@@ -201,20 +201,19 @@ TEST(SupportModel, TurningAboutThePrintAxisChangesLittle) {
   const Surface bunny = test::load_mesh(test::sample_bunny_path());
   const Surface part = test::transformed(bunny, 6.0 * Eigen::Matrix3d::Identity());  // about 60 mm
   auto turned = [&](double deg) { return test::transformed(part, test::axis_angle(Vector3d::UnitZ(), deg * M_PI / 180.0)); };
-  // With every pixel offset as a phase, a quarter turn maps the grid and the phases onto
-  // themselves: the same figure.
+  // A half turn maps the grid, its phases and the support lines (along x, on cell boundaries)
+  // onto themselves: the same figure.
+  const double v = volume(part);
+  ASSERT_GT(v, 1000.0);
+  EXPECT_NEAR(volume(turned(180.0)), v, 1e-9 * v);
+  // A quarter turn lays the lines along the part's other axis, which the slicer feels too (by 8%
+  // on this part, turn 90 against turn 0); other angles meet the grid at another angle.
+  EXPECT_NEAR(volume(turned(90.0)), v, 0.10 * v);
+  for (double deg : {10.0, 30.0, 45.0}) EXPECT_NEAR(volume(turned(deg)), v, 0.05 * v) << deg;
+  // Every pixel offset as a phase samples the same average as the default four.
   SupportModelOptions all;
   all.grid_phases = all.pixels_per_cell * all.pixels_per_cell;
-  const double v = volume(part, all);
-  ASSERT_GT(v, 1000.0);
-  EXPECT_NEAR(volume(turned(90.0), all), v, 1e-9 * v);
-  EXPECT_NEAR(volume(turned(180.0), all), v, 1e-9 * v);
-  // The default 4 phases sample the same average; other angles meet the grid at another angle,
-  // which the slicer's figure also feels (by a few %).
-  const double v4 = volume(part);
-  EXPECT_NEAR(v4, v, 0.01 * v);
-  EXPECT_NEAR(volume(turned(90.0)), v4, 0.01 * v4);
-  for (double deg : {10.0, 30.0, 45.0}) EXPECT_NEAR(volume(turned(deg)), v4, 0.03 * v4) << deg;
+  EXPECT_NEAR(volume(part, all), v, 0.02 * v);
 }
 
 TEST(SupportModel, SameResultOnAnyThreadCountAndPrintDirection) {

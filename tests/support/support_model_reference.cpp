@@ -87,11 +87,6 @@ Voxels voxels(const SupportRaster& r, const SlicerLayers& L, const GridSweepSett
       v.at(v.top, p, j) = v.at(v.solid, p, j) && !(j + 1 < L.count && v.at(v.solid, p, j + 1));
     }
   }
-  auto first_slice = [&](double z) {
-    int k = 0;
-    while (k < L.count && L.slice_z(k) < z) ++k;
-    return k;
-  };
   auto contact_layer = [&](int k) {
     int j = -1;
     for (int i = 0; i < L.count; ++i)
@@ -99,7 +94,7 @@ Voxels voxels(const SupportRaster& r, const SlicerLayers& L, const GridSweepSett
     return j;
   };
   for (const PixelOverhang& o : r.overhangs) {
-    const int lo = first_slice(o.z_low), hi = std::min(L.count - 1, first_slice(o.z_high));
+    const int lo = o.layer_low, hi = std::min(L.count - 1, o.layer_high);
     if (lo >= L.count || (lo > 0 && v.at(v.solid, o.pixel, lo - 1))) continue;
     for (int j = std::max(0, contact_layer(lo)); j <= contact_layer(hi); ++j) {
       v.at(v.contact, o.pixel, j) = 1;
@@ -189,7 +184,8 @@ GridSweepResult reference_sweep(const SupportRaster& r, const SlicerLayers& L, c
       if (now[c] && has_dense) depth[c] = rates[j].interface_depth;
       weight[c] = std::clamp(depth[c] - dense[c], 0.0, 1.0);
     }
-    double base = 0, iface = 0, outline = 0;
+    double base = 0, iface = 0, outline = 0, fill = 0;
+    auto is_base = [&](int c) { return c >= 0 && c < cells && now[c] && weight[c] < 0.5; };
     for (int c = 0; c < cells; ++c) {
       if (!now[c]) continue;
       int trimmed = 0, edges = 0, side_trimmed[4] = {0, 0, 0, 0};
@@ -211,20 +207,34 @@ GridSweepResult reference_sweep(const SupportRaster& r, const SlicerLayers& L, c
       base += (1 - weight[c]) * area;
       iface += weight[c] * area;
       if (contact) out.contact_area += area;
-      if (!s.sheath || weight[c] >= 0.5) continue;
-      outline += edges * px * kStaircase;
+      if (weight[c] >= 0.5) continue;
       const int nbc[4] = {c - 1, c + 1, c - cx, c + cx};
-      for (int k = 0; k < 4; ++k) {
-        const bool base_neighbour = nbc[k] >= 0 && nbc[k] < cells && now[nbc[k]] && weight[nbc[k]] < 0.5;
-        if (!base_neighbour) outline += (S - side_trimmed[k]) * px;
+      if (s.sheath) {
+        outline += edges * px * kStaircase;
+        for (int k = 0; k < 4; ++k)
+          if (!is_base(nbc[k])) outline += (S - side_trimmed[k]) * px;
+      }
+      // A fill line on the boundary with the base cell above (its free pixels on both sides), and
+      // half a link where it and the line below both end here.
+      const bool up = is_base(c + cx), down = is_base(c - cx);
+      if (up) {
+        int up_trimmed = 0;
+        for (int p : members[c + cx]) up_trimmed += (p / g.nx + S - oy) % S == 0 && v.at(v.trim, p, j);
+        fill += std::min(S - side_trimmed[3], S - up_trimmed) * px;
+      }
+      for (int side : {-1, 1}) {
+        const bool end_up = up && !(is_base(c + side) && is_base(c + cx + side));
+        const bool end_down = down && !(is_base(c + side) && is_base(c - cx + side));
+        if (end_up) fill -= rates[j].fill_end;
+        if (end_up && end_down) fill += 0.5 * (S - side_trimmed[side < 0 ? 0 : 1]) * px;
       }
     }
     const double t = L.thickness(j);
     out.column_volume += t * (base + iface);
     const SweepRates& r = rates[j];
     if (j > 0) {
-      out.base_fill += t * std::max(0.0, base - r.fill_inset * outline) * r.fill_per_mm3;
-      out.sheath += t * outline * r.sheath_per_mm2;
+      out.base_fill += t * std::max(0.0, fill) * r.line_per_mm2;
+      out.sheath += t * outline * r.line_per_mm2;
       out.top_interface += t * iface * r.interface_per_mm3;
     } else {
       out.first_layer = first_layer(v, g, s, rates[0], cell, now);
