@@ -202,7 +202,7 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
   }
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3 && kind[f]; ++k) {
-      const int g = adj.across[3 * f + k];
+      const int g = adj.across(f, k).face;
       if (g >= 0 && kind[g]) regions.join(f, g);
     }
   std::vector<double> area(static_cast<size_t>(nf), 0.0), outline(static_cast<size_t>(nf), 0.0);
@@ -212,7 +212,7 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
     const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
     area[r] += 0.5 * std::abs(cross2((b - a).head<2>(), (c - a).head<2>()));
     for (int k = 0; k < 3; ++k) {
-      const int g = adj.across[3 * f + k];
+      const int g = adj.across(f, k).face;
       if (g < 0 || !kind[g])
         outline[r] += (s.V.row(s.F(f, (k + 1) % 3)) - s.V.row(s.F(f, k))).head<2>().norm();
     }
@@ -237,8 +237,6 @@ void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const Ove
   const double reach_overhang = 1.0 / std::tan(rule.max_slope_deg * M_PI / 180.0);
   const double reach_dense = 1.0 / std::tan(rule.dense_slope_deg * M_PI / 180.0);
   const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows());
-  const std::vector<int>& begin = adj.vertex_begin;
-  const std::vector<int>& around = adj.vertex_face;
   auto vertex = [&](int v) -> Vec3 { return s.V.row(v).transpose(); };
   for (int f = 0; f < nf && rule.creases; ++f) {
     for (int k = 0; k < 3; ++k) {
@@ -250,8 +248,9 @@ void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const Ove
       if (!(len > 0) || !(e.head<2>().norm() / len > cos_max_slope) || !rises_from(a, b, c)) continue;
       // Once per edge (from its lower face index), manifold, the other face rising too, and convex:
       // the other face's third vertex behind this face's plane.
-      if (adj.across[3 * f + k] < f) continue;
-      const int x = adj.opposite[3 * f + k];
+      const FaceAdjacency::Twin twin = adj.across(f, k);
+      if (twin.face < f) continue;
+      const int x = twin.opposite;
       const Vec3 d = vertex(x), n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
       if (!rises_from(b, a, d) || !(n1.dot(d - a) < 0)) continue;
       const double reach = crease_reach(a, b, n1, n2);
@@ -259,11 +258,11 @@ void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const Ove
     }
   }
   for (int v = 0; v < nv && rule.tips; ++v) {
-    if (begin[v + 1] - begin[v] < 3) continue;
+    if (adj.faces_end(v) - adj.faces_begin(v) < 3) continue;
     double lowest = INFINITY;
-    for (int i = begin[v]; i < begin[v + 1]; ++i)
-      for (int m = 0; m < 3; ++m)
-        if (s.F(around[i], m) != v) lowest = std::min(lowest, s.V(s.F(around[i], m), 2));
+    for (const int* f = adj.faces_begin(v); f != adj.faces_end(v); ++f)
+      for (int u : adj.face(*f))
+        if (u != v) lowest = std::min(lowest, s.V(u, 2));
     if (!(s.V(v, 2) < lowest)) continue;
     const Vec3 p = s.V.row(v);
     mark_feature(voxels, p, p, p, true, out);
@@ -279,7 +278,7 @@ SupportRaster build_support_raster(const Surface& s, const PixelGrid& g, const O
   SupportRaster out;
   out.grid = g;
   rasterize_solid(s, g, out);
-  const FaceAdjacency adj = face_adjacency(s);
+  const FaceAdjacency adj(s);
   const LayerVoxels voxels(g, rule, s.V.col(2).maxCoeff());
   const std::vector<char> kind = overhanging_faces(s, adj, rule);
   for (Eigen::Index f = 0; f < s.F.rows(); ++f)

@@ -388,53 +388,54 @@ GridSweepResult GridSupportSweep::run(int ox, int oy) const {
 // at the first layer's density, with a sheath.
 double GridSupportSweep::first_layer(const std::vector<int>& columns, int cells_x, int ox, int oy) const {
   const int nx = grid_.nx, ny = grid_.ny, S = settings_.pixels_per_cell;
-  std::vector<std::uint8_t> region(static_cast<size_t>(grid_.count()), 0);
+  const int steps = static_cast<int>(std::lround(settings_.first_layer_expansion / grid_.pixel));
   int i0 = nx, i1 = -1, j0 = ny, j1 = -1;
   for (int c : columns) {  // the pixels of cell c: i + S - ox in [ci·S, ci·S + S)
     const int ci = c % cells_x, cj = c / cells_x;
-    for (int j = std::max(0, cj * S - S + oy); j < std::min(ny, cj * S + oy); ++j)
-      for (int i = std::max(0, ci * S - S + ox); i < std::min(nx, ci * S + ox); ++i) {
-        const int q = i + nx * j;
-        if (trimmed_first_[q]) continue;
-        region[q] = 1;
-        i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
-      }
+    i0 = std::min(i0, std::max(0, ci * S - S + ox)), i1 = std::max(i1, std::min(nx, ci * S + ox) - 1);
+    j0 = std::min(j0, std::max(0, cj * S - S + oy)), j1 = std::max(j1, std::min(ny, cj * S + oy) - 1);
   }
-  if (i1 < 0) return 0.0;
-  const int steps = static_cast<int>(std::lround(settings_.first_layer_expansion / grid_.pixel));
+  if (i1 < i0 || j1 < j0) return 0.0;
+  // A window over the columns grown by the steps and one more pixel; outside the raster is
+  // walled off. Codes: 0 free, 1 support, 2 the part's first slice, 3 outside.
+  const int wi0 = i0 - steps - 1, wj0 = j0 - steps - 1, w = i1 - i0 + 2 * steps + 3, h = j1 - j0 + 2 * steps + 3;
+  std::vector<std::uint8_t> code(static_cast<size_t>(w) * h, 3);
+  for (int b = 0; b < h; ++b)
+    for (int a = 0; a < w; ++a) {
+      const int i = wi0 + a, j = wj0 + b;
+      if (i >= 0 && j >= 0 && i < nx && j < ny) code[a + w * b] = solid_first_[i + nx * j] ? 2 : 0;
+    }
+  for (int c : columns) {
+    const int ci = c % cells_x, cj = c / cells_x;
+    for (int j = std::max(0, cj * S - S + oy); j < std::min(ny, cj * S + oy); ++j)
+      for (int i = std::max(0, ci * S - S + ox); i < std::min(nx, ci * S + ox); ++i)
+        if (!trimmed_first_[i + nx * j]) code[(i - wi0) + w * (j - wj0)] = 1;
+  }
+  // Grown in steps to the 4 and then the 8 neighbours (an octagon), never into the part.
   std::vector<std::uint8_t> next;
   for (int step = 0; step < steps; ++step) {
-    i0 = std::max(0, i0 - 1), i1 = std::min(nx - 1, i1 + 1), j0 = std::max(0, j0 - 1), j1 = std::min(ny - 1, j1 + 1);
-    next = region;
+    next = code;
     const bool diagonal = step % 2 == 1;
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const int q = i + nx * j;
-        if (region[q] || solid_first_[q]) continue;
-        bool reached = false;
-        for (int dj = -1; dj <= 1 && !reached; ++dj)
-          for (int di = -1; di <= 1 && !reached; ++di) {
-            if ((di == 0 && dj == 0) || (!diagonal && di != 0 && dj != 0)) continue;
-            const int a = i + di, b = j + dj;
-            reached = a >= 0 && b >= 0 && a < nx && b < ny && region[a + nx * b];
-          }
-        next[q] = reached;
+    for (int b = 1; b + 1 < h; ++b)
+      for (int a = 1; a + 1 < w; ++a) {
+        const int q = a + w * b;
+        if (code[q] != 0) continue;
+        bool reached = code[q - 1] == 1 || code[q + 1] == 1 || code[q - w] == 1 || code[q + w] == 1;
+        if (diagonal) reached = reached || code[q - w - 1] == 1 || code[q - w + 1] == 1 || code[q + w - 1] == 1 || code[q + w + 1] == 1;
+        if (reached) next[q] = 1;
       }
-    region.swap(next);
+    code.swap(next);
   }
   double area = 0.0, outline = 0.0, along_part = 0.0;
-  for (int j = j0; j <= j1; ++j)
-    for (int i = i0; i <= i1; ++i) {
-      const int q = i + nx * j;
-      if (!region[q]) continue;
+  for (int b = 1; b + 1 < h; ++b)
+    for (int a = 1; a + 1 < w; ++a) {
+      const int q = a + w * b;
+      if (code[q] != 1) continue;
       area += 1.0;
-      const int around[4][2] = {{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}};
-      for (const auto& ab : around) {
-        const bool inside = ab[0] >= 0 && ab[1] >= 0 && ab[0] < nx && ab[1] < ny;
-        const int r = inside ? ab[0] + nx * ab[1] : -1;
-        if (r >= 0 && region[r]) continue;
+      for (int r : {q - 1, q + 1, q - w, q + w}) {
+        if (code[r] == 1) continue;
         outline += 1.0;
-        if (r >= 0 && solid_first_[r]) along_part += 1.0;
+        along_part += code[r] == 2;
       }
     }
   const double p = grid_.pixel;

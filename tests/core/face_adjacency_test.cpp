@@ -10,52 +10,54 @@ namespace {
 
 TEST(FaceAdjacency, EveryEdgeOfAClosedMeshHasItsTwin) {
   const Surface s = test::icosphere(2);
-  const FaceAdjacency a = face_adjacency(s);
+  const FaceAdjacency a(s);
   for (int f = 0; f < s.F.rows(); ++f) {
     for (int k = 0; k < 3; ++k) {
-      const int g = a.across[3 * f + k];
-      ASSERT_GE(g, 0);
-      ASSERT_NE(g, f);
-      const int u = s.F(f, k), v = s.F(f, (k + 1) % 3), x = a.opposite[3 * f + k];
-      EXPECT_NE(x, u);
-      EXPECT_NE(x, v);
-      int back = -1;  // g's edge v -> u points back at f
+      const FaceAdjacency::Twin t = a.across(f, k);
+      ASSERT_GE(t.face, 0);
+      ASSERT_NE(t.face, f);
+      const int u = s.F(f, k), v = s.F(f, (k + 1) % 3);
+      EXPECT_NE(t.opposite, u);
+      EXPECT_NE(t.opposite, v);
+      int back = -1;  // the twin's edge v -> u points back at f
       for (int m = 0; m < 3; ++m)
-        if (s.F(g, m) == v && s.F(g, (m + 1) % 3) == u) back = a.across[3 * g + m];
+        if (s.F(t.face, m) == v && s.F(t.face, (m + 1) % 3) == u) back = a.across(t.face, m).face;
       EXPECT_EQ(back, f);
     }
   }
+  int listed = 0;
   for (int v = 0; v < s.V.rows(); ++v) {
-    for (int i = a.vertex_begin[v]; i < a.vertex_begin[v + 1]; ++i) {
-      const int f = a.vertex_face[i];
-      EXPECT_TRUE(s.F(f, 0) == v || s.F(f, 1) == v || s.F(f, 2) == v);
-      if (i > a.vertex_begin[v]) {
-        EXPECT_LT(a.vertex_face[i - 1], f);
+    for (const int* f = a.faces_begin(v); f != a.faces_end(v); ++f, ++listed) {
+      EXPECT_TRUE(s.F(*f, 0) == v || s.F(*f, 1) == v || s.F(*f, 2) == v);
+      if (f != a.faces_begin(v)) {
+        EXPECT_LT(f[-1], *f);
       }
     }
   }
+  EXPECT_EQ(listed, 3 * s.F.rows());
 }
 
 TEST(FaceAdjacency, NoTwinAcrossNonManifoldOrFlippedEdges) {
   const Surface cubes = test::two_cubes_sharing_edge();
-  const FaceAdjacency a = face_adjacency(cubes);
+  const FaceAdjacency a(cubes);
   int missing = 0;
-  for (int e = 0; e < 3 * cubes.F.rows(); ++e) missing += a.across[e] < 0;
+  for (int f = 0; f < cubes.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) missing += a.across(f, k).face < 0;
   EXPECT_GT(missing, 0);  // the four faces on the shared edge have no single twin
   Surface s = test::icosphere(1);
   std::swap(s.F(0, 1), s.F(0, 2));  // one face turned over
-  const FaceAdjacency b = face_adjacency(s);
+  const FaceAdjacency b(s);
   for (int k = 0; k < 3; ++k) {
-    EXPECT_EQ(b.across[k], -1);
-    EXPECT_EQ(b.opposite[k], -1);
+    EXPECT_EQ(b.across(0, k).face, -1);
+    EXPECT_EQ(b.across(0, k).opposite, -1);
   }
 }
 
 TEST(FaceAdjacency, OpenEdgesHaveNoTwin) {
   const Surface s = test::triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
-  const FaceAdjacency a = face_adjacency(s);
-  EXPECT_EQ(a.across, std::vector<int>({-1, -1, -1}));
-  EXPECT_EQ(a.vertex_face, std::vector<int>({0, 0, 0}));
+  const FaceAdjacency a(s);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(a.across(0, k).face, -1);
+  for (int v = 0; v < 3; ++v) EXPECT_EQ(a.faces_end(v) - a.faces_begin(v), 1);
 }
 
 }  // namespace

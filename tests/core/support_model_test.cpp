@@ -216,6 +216,44 @@ TEST(SupportModel, TurningAboutThePrintAxisChangesLittle) {
   EXPECT_NEAR(volume(part, all), v, 0.02 * v);
 }
 
+TEST(SupportModel, ASpeckThatMovesTheGridBarelyMovesTheAverage) {
+  // A 0.1 mm speck on the plate beside the part moves its bounding box, and with it the slicer's
+  // grid, by a fraction of a cell: the slicer's own phase jumps by several %, the phase average
+  // hardly moves, so no optimizer can win by moving the box against the grid.
+  Surface part = test::load_mesh(test::sample_bunny_path());
+  part.V *= 6.0;
+  const double xmax = part.V.col(0).maxCoeff(), y = part.V.col(1).mean();
+  auto spread = [&](int phases) {
+    SupportModelOptions o;
+    o.grid_phases = phases;
+    double lo = INFINITY, hi = 0.0;
+    for (double d = 0.5; d < 3.4; d += 0.357) {
+      const double v = volume(test::merge(part, test::box({xmax + d, y, 0}, {xmax + d + 0.1, y + 0.1, 0.1})), o);
+      lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    return (hi - lo) / hi;
+  };
+  const double own = spread(1), average = spread(4);
+  EXPECT_GT(own, 0.03);
+  EXPECT_LT(average, 0.02);
+  EXPECT_LT(average, own / 3);
+}
+
+TEST(SupportModel, ThePartsAndTheLayersAddUpToTheWhole) {
+  const SupportEstimate e = estimate_support(test::merge(slab_on_stem(10.0, 20.0), test::box({-8, -8, 0}, {8, 8, 8})));
+  ASSERT_GT(e.bottom_interface_mm3, 0.0);
+  EXPECT_NEAR(e.base_fill_mm3 + e.sheath_mm3 + e.top_interface_mm3 + e.bottom_interface_mm3 + e.first_layer_mm3, e.volume_mm3,
+              1e-9 * e.volume_mm3);
+  double layers = 0.0;
+  for (double v : e.layer_mm3) layers += v;
+  EXPECT_NEAR(layers, e.volume_mm3, 1e-9 * e.volume_mm3);
+  double phases = 0.0;
+  for (double v : e.phase_mm3) phases += v / e.phase_mm3.size();
+  EXPECT_NEAR(phases, e.volume_mm3, 1e-9 * e.volume_mm3);
+  EXPECT_LE(e.min_phase_mm3, e.volume_mm3);
+  EXPECT_GE(e.max_phase_mm3, e.volume_mm3);
+}
+
 TEST(SupportModel, SameResultOnAnyThreadCountAndPrintDirection) {
   const Surface t = test::t_shape();
   SupportModelOptions one, two;
