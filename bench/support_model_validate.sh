@@ -15,6 +15,10 @@
 # It prints a Markdown table: per mesh the absolute support (mm³); for results the change from
 # the input (%) by each slicer and the model, and the model's error in points of that change;
 # then the mean and largest absolute errors, per kind of model (organic, cad, creature, shape).
+# "Phase luck" is the model's own change at the slicer's phase less its phase-averaged change:
+# how much of a slicer's change the grid's phase alone may have made (the judge's quarter turns
+# keep the grid's phase: the grid is centred on the bounding box, which a quarter turn maps onto
+# itself).
 # Files go to OUT (default out/support-model); finished slices are kept and not redone, so a
 # second run only adds what is missing (--table-only: no slicing, the model estimated afresh on
 # the meshes there and the table printed).
@@ -129,20 +133,20 @@ awk -F'\t' '
   function abs(x) { return x < 0 ? -x : x }
   function add(key, e) { n[key]++; s[key] += abs(e); if (abs(e) > w[key]) w[key] = abs(e) }
   BEGIN {
-    print "| model | kind | mesh | PrusaSlicer mm³ | Cura mm³ | model mm³ (slicer phase) | PrusaSlicer | Cura | model | model, slicer phase | error vs PrusaSlicer | vs Cura | slicer phase vs PrusaSlicer |"
-    print "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    print "| model | kind | mesh | PrusaSlicer mm³ | Cura mm³ | model mm³ (slicer phase) | PrusaSlicer | Cura | model | model, slicer phase | error vs PrusaSlicer | vs Cura | slicer phase vs PrusaSlicer | phase luck |"
+    print "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
   }
   $3 == "input" {
     p0 = $4; c0 = $5; m0 = $6; q0 = $7
-    printf "| %s | %s | input | %.0f | %.0f | %.0f (%.0f) | | | | | | | |\n", $1, $2, $4, $5, $6, $7
+    printf "| %s | %s | input | %.0f | %.0f | %.0f (%.0f) | | | | | | | | |\n", $1, $2, $4, $5, $6, $7
     ap[$2] += abs(pct($6, $4)); aq[$2] += abs(pct($7, $4)); ac[$2] += abs(pct($6, $5)); ni[$2]++
     ap["all"] += abs(pct($6, $4)); aq["all"] += abs(pct($7, $4)); ac["all"] += abs(pct($6, $5)); ni["all"]++
     next
   }
   {
     dp = pct($4, p0); dc = pct($5, c0); dm = pct($6, m0); dq = pct($7, q0)
-    printf "| %s | %s | %s | %.0f | %.0f | %.0f (%.0f) | %+.1f%% | %+.1f%% | %+.1f%% | %+.1f%% | %+.1f | %+.1f | %+.1f |\n",
-      $1, $2, $3, $4, $5, $6, $7, dp, dc, dm, dq, dm - dp, dm - dc, dq - dp
+    printf "| %s | %s | %s | %.0f | %.0f | %.0f (%.0f) | %+.1f%% | %+.1f%% | %+.1f%% | %+.1f%% | %+.1f | %+.1f | %+.1f | %+.1f |\n",
+      $1, $2, $3, $4, $5, $6, $7, dp, dc, dm, dq, dm - dp, dm - dc, dq - dp, dq - dm
     add("P " $2, dm - dp); add("C " $2, dm - dc); add("Q " $2, dq - dp); add("P all", dm - dp); add("C all", dm - dc); add("Q all", dq - dp)
   }
   END {

@@ -21,9 +21,11 @@
 //             triangle_cells.h over pixels × layers) and whether it wants a dense interface.
 //             Features:
 //               - a face less steep than rule.max_slope_deg (dense when less steep than
-//                 rule.dense_slope_deg), in a connected region of such faces wider than what the
-//                 slicer sees from one layer to the next (layer_height / tan(slope)): a lip or
-//                 fold narrower than that never reaches that far beyond the layer below;
+//                 rule.dense_slope_deg), unless its connected region of such faces reaches less
+//                 than half a layer's reach (layer_height / tan(slope)) beyond the layer below
+//                 (a lip or a fold); the faces on a region's edge also marked shifted by that
+//                 reach along their level direction (the slicer grows each overhang back into the
+//                 layer by it);
 //               - a bottom crease: an edge whose two faces both rise away from it, convex, with
 //                 the edge itself less steep than max_slope_deg (the first slice of a keel is a
 //                 thin island with nothing below it); dense;
