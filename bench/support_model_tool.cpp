@@ -3,7 +3,7 @@
 //
 //   support_model_tool estimate MESH [--angle DEG] [--phases N] [--turns N] [--pixels N] [--layers]
 //       The model's estimate for MESH as printed in its own frame (+Z up), part by part (and with
-//       --layers, layer by layer: "layer J MM3").
+//       --layers, layer by layer: "layer J MM3"), and the mesh's open and non-manifold edges.
 //   support_model_tool turn MESH DEG OUT.stl
 //       MESH turned by DEG about +Z through its bounding-box centre, resting on z = 0, as STL:
 //       the same part against another grid angle and phase.
@@ -45,7 +45,11 @@ int estimate(int argc, char** argv) {
     else if (k == "--tips") o.lowest_points = std::atoi(v) != 0;
     else throw std::invalid_argument("unknown option " + k);
   }
-  const slim::SupportEstimate e = slim::estimate_support(slim::vcgx::load_surface(argv[2]), o);
+  const slim::Surface surface = slim::vcgx::load_surface(argv[2]);
+  const slim::SupportEstimate e = slim::estimate_support(surface, o);
+  const slim::EdgeTopology edges = slim::edge_topology(surface);
+  std::printf("open_edges=%lld\nnonmanifold_edges=%lld\n", static_cast<long long>(edges.open_edges),
+              static_cast<long long>(edges.nonmanifold_edges));
   std::printf("volume_mm3=%.3f\nbase_fill_mm3=%.3f\nsheath_mm3=%.3f\ntop_interface_mm3=%.3f\n"
               "bottom_interface_mm3=%.3f\nfirst_layer_mm3=%.3f\nmin_phase_mm3=%.3f\nmax_phase_mm3=%.3f\n"
               "contact_area_mm2=%.3f\nlanding_area_mm2=%.3f\ncolumn_volume_mm3=%.3f\npixel_mm=%.4f\nlayers=%d\ncells=%d\n",
