@@ -194,7 +194,7 @@ double crease_reach(const Vec3& a, const Vec3& b, const Vec3& n1, const Vec3& n2
 // slicer lays nothing under it), not a patch of a scan's surface just below the threshold among
 // faces just above it (the slicer supports those: on the slimmed 70k-face bunny, dropping them
 // cost 14% of the support). 1: overhang, 2: dense overhang (the reach past layer / tan(dense
-// slope)), 0: neither.
+// slope)), 0: neither; plus 4 on the region's edge (a side with no overhanging face).
 std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule) {
   const int nf = static_cast<int>(s.F.rows());
   const double cos_max = std::cos(rule.max_slope_deg * M_PI / 180.0), cos_dense = std::cos(rule.dense_slope_deg * M_PI / 180.0);
@@ -208,9 +208,10 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
     const double down = len > 0 ? -normal[f].z() / len : 0.0;  // cos of the slope, for a face looking down
     kind[f] = down > cos_max ? (down > cos_dense ? 2 : 1) : 0;
   }
+  std::vector<int> across(static_cast<size_t>(3) * nf, -1);  // for the overhanging faces only
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3 && kind[f]; ++k) {
-      const int g = adj.across(f, k).face;
+      const int g = across[3 * f + k] = adj.across(f, k).face;
       if (g >= 0 && kind[g]) regions.join(f, g);
     }
   // Per region (at its root): projected area, outline, sum of area × tan(slope), and along the
@@ -226,7 +227,7 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
     r.area += 0.5 * flat;
     r.area_tan += 0.5 * steep;  // projected area × tan(slope) = half the normal's horizontal part
     for (int k = 0; k < 3; ++k) {
-      const int g = adj.across(f, k).face;
+      const int g = across[3 * f + k];
       if (g >= 0 && kind[g]) continue;
       const double length = (s.V.row(s.F(f, (k + 1) % 3)) - s.V.row(s.F(f, k))).head<2>().norm();
       r.outline += length;
@@ -248,6 +249,11 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
     }
     kind[f] = seen > 0.5 * reach ? (kind[f] == 2 && seen > reach_dense ? 2 : 1) : 0;
   }
+  for (int f = 0; f < nf; ++f)  // on the edge of its region: a side with no overhanging face
+    for (int k = 0; k < 3 && (kind[f] & 3); ++k) {
+      const int g = across[3 * f + k];
+      if (g < 0 || !(kind[g] & 3)) kind[f] |= 4;
+    }
   return kind;
 }
 
@@ -312,17 +318,12 @@ SupportRaster build_support_raster(const Surface& s, const PixelGrid& g, const O
   for (int f = 0; f < static_cast<int>(s.F.rows()); ++f) {
     if (!kind[f]) continue;
     const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    mark_feature(voxels, a, b, c, kind[f] == 2, out.overhangs);
-    bool edge = false;
-    for (int k = 0; k < 3 && !edge; ++k) {
-      const int g = adj.across(f, k).face;
-      edge = g < 0 || !kind[g];
-    }
+    const bool dense = (kind[f] & 3) == 2;
+    mark_feature(voxels, a, b, c, dense, out.overhangs);
     const Vec3 n = (b - a).cross(c - a);
-    if (!edge || !(n.head<2>().norm() > 0)) continue;
+    if (!(kind[f] & 4) || !(n.head<2>().norm() > 0)) continue;
     const Vec3 along = Vec3(-n.y(), n.x(), 0.0).normalized() * reach;  // the face's level direction
-    for (double side : {-1.0, 1.0})
-      mark_feature(voxels, a + side * along, b + side * along, c + side * along, kind[f] == 2, out.overhangs);
+    for (double side : {-1.0, 1.0}) mark_feature(voxels, a + side * along, b + side * along, c + side * along, dense, out.overhangs);
   }
   mark_creases_and_tips(s, adj, rule, voxels, out.overhangs);
   sort_by_pixel(out.overhangs, g.count(), [](const PixelOverhang& x, const PixelOverhang& y) {
