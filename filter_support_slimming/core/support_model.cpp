@@ -114,7 +114,7 @@ SupportEstimate estimate_support(const Surface& surface, const SupportModelOptio
   SupportEstimate est;
   std::vector<GridSweepResult> runs;
   for (int t = 0; t < o.turns; ++t) {
-    const Surface frame = print_frame(surface, o, 0.5 * M_PI * t / o.turns);
+    const Surface frame = print_frame(surface, o, M_PI * t / o.turns);
     const double height = frame.V.col(2).maxCoeff();
     require(height > 0, "the part has no height along the print direction");
     SlicerLayers layers;

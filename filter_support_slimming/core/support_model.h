@@ -50,7 +50,9 @@
 // cell (1: the slicer's own phase only; pixels_per_cell: offsets k/n of a cell in x and a
 // permutation of them in y; pixels_per_cell²: every pixel offset), so moving the part changes it
 // only as much as a different sample of the same average. Turning about the print axis changes
-// the grid's angle to the part, which phases do not cover; turns > 1 also averages over that.
+// the grid's angle to the part and the direction of the support lines (along x), which phases do
+// not cover; turns > 1 also averages over turns spread over half a turn (2: 0° and 90°, as the
+// judge's quarter turns; 4: every 45°).
 //
 // Determinism: the phases run in parallel (OpenMP), each in a fixed order, and are summed in
 // phase order: the result does not depend on the thread count.
@@ -100,7 +102,7 @@ struct SupportModelOptions {
   // The model.
   int pixels_per_cell = 4;            // raster pixels along a grid cell, >= 1
   int grid_phases = 4;                // 1, pixels_per_cell or pixels_per_cell²
-  int turns = 1;                      // turns about the print axis averaged, spread over 90°
+  int turns = 1;                      // turns about the print axis averaged, spread over 180°
   int threads = 0;                    // OpenMP threads; 0: the runtime's default
 };
 

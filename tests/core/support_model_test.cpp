@@ -210,6 +210,10 @@ TEST(SupportModel, TurningAboutThePrintAxisChangesLittle) {
   // on this part, turn 90 against turn 0); other angles meet the grid at another angle.
   EXPECT_NEAR(volume(turned(90.0)), v, 0.10 * v);
   for (double deg : {10.0, 30.0, 45.0}) EXPECT_NEAR(volume(turned(deg)), v, 0.05 * v) << deg;
+  // turns = 2 averages the part as given and turned by a quarter.
+  SupportModelOptions two;
+  two.turns = 2;
+  EXPECT_NEAR(volume(part, two), 0.5 * (v + volume(turned(90.0))), 1e-6 * v);
   // Every pixel offset as a phase samples the same average as the default four.
   SupportModelOptions all;
   all.grid_phases = all.pixels_per_cell * all.pixels_per_cell;
