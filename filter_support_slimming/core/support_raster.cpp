@@ -161,26 +161,24 @@ bool rises_from(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 // How far the slicer sees a convex bottom crease a-b (between faces of outward normals n1, n2)
 // reach beyond the layer below, per unit of layer height. Layer by layer the slice has a corner
-// where the crease meets the layer, the wedge {x : (x - tip)·m_i <= 0} (m_i the faces' outward
-// normals in the plane); one layer up the tip has moved uphill along the crease by
-// layer / tan(crease slope); the reach is the new tip's distance from the old wedge. The slicer
-// sees an overhang when it exceeds layer / tan(max slope), a dense one beyond layer / tan(dense
-// slope). A level crease appears all at once: infinite. 0 when the tip stays inside.
+// where the crease meets the layer: the wedge {x : (x - tip)·m_i <= 0}, m_i the faces' outward
+// normals in the plane. One layer up the tip has moved uphill along the crease by
+// layer / tan(crease slope). The slicer grows the layer below by its reach with square corners
+// (Clipper's square joins: each side pushed out by the reach, the corner cut square at the reach
+// along its bisector) and calls what sticks out an overhang: the new tip's largest offset along
+// m_1, m_2 and the bisector. A level crease appears all at once: infinite. 0 when the tip stays
+// inside the old slice.
 double crease_reach(const Vec3& a, const Vec3& b, const Vec3& n1, const Vec3& n2) {
   const Vec2 m1 = n1.head<2>(), m2 = n2.head<2>();
   if (!(m1.norm() > 0) || !(m2.norm() > 0)) return 0.0;  // a level face: its own rule covers it
   const Vec3 e = b.z() >= a.z() ? Vec3(b - a) : Vec3(a - b);
   if (!(e.z() > 0)) return INFINITY;
   const Vec2 tip = e.head<2>() / e.z();  // one unit of height up the crease
-  const Vec2 w[2] = {m1.normalized(), m2.normalized()};
-  double distance = tip.norm();  // to the old corner
-  for (int i = 0; i < 2; ++i) {
-    const double out = tip.dot(w[i]);
-    const Vec2 foot = tip - out * w[i];  // on the old wedge's side i, if inside the other half-plane
-    if (out > 0 && foot.dot(w[1 - i]) <= 1e-12) distance = std::min(distance, out);
-    if (out <= 0 && tip.dot(w[1 - i]) <= 0) return 0.0;  // the tip stays inside the old slice
-  }
-  return distance;
+  const Vec2 w1 = m1.normalized(), w2 = m2.normalized(), mid = w1 + w2;
+  double reach = std::max(tip.dot(w1), tip.dot(w2));
+  if (mid.norm() > 1e-9) reach = std::max(reach, tip.dot(mid.normalized()));
+  else reach = std::max(reach, tip.norm());  // a fold flat on itself: no corner to cut
+  return std::max(0.0, reach);
 }
 
 // Faces less steep than the threshold, kept only where the slicer sees them. From one layer to

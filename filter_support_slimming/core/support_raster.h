@@ -26,9 +26,10 @@
 //                 (a lip or a fold); the faces on a region's edge also marked shifted by that
 //                 reach along their level direction (the slicer grows each overhang back into the
 //                 layer by it);
-//               - a bottom crease: an edge whose two faces both rise away from it, convex, with
-//                 the edge itself less steep than max_slope_deg (the first slice of a keel is a
-//                 thin island with nothing below it); dense;
+//               - a bottom crease: an edge whose two faces both rise away from it, convex, less
+//                 steep than max_slope_deg, whose tip in the slice moves out of the layer below
+//                 grown by layer_height / tan(max slope) with square corners (the first slices
+//                 of a keel are thin islands with nothing below them); dense past the dense reach;
 //               - a lowest vertex: below all its neighbours, on at least 3 faces; dense.
 //             A pixel may carry several overhangs (one per feature touching it).
 // Cost: O(#F + #pixels touched). Deterministic (serial).
