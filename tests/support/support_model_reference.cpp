@@ -146,30 +146,103 @@ double first_layer(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, co
 
 }  // namespace
 
+namespace {
+
+// One phase's cells, pixel by pixel.
+struct Phase {
+  int S, ox, oy, cx, cells;
+  std::vector<int> cell;
+  std::vector<std::vector<int>> members;
+  Phase(const PixelGrid& g, int per_cell, int ox_, int oy_) : S(per_cell), ox(ox_), oy(oy_) {
+    cx = (g.nx + S - 1) / S + 1;
+    cells = cx * ((g.ny + S - 1) / S + 1);
+    cell.resize(static_cast<size_t>(g.count()));
+    members.resize(static_cast<size_t>(cells));
+    for (int p = 0; p < g.count(); ++p) {
+      cell[p] = (p % g.nx + S - ox) / S + cx * ((p / g.nx + S - oy) / S);
+      members[cell[p]].push_back(p);
+    }
+  }
+};
+
+struct LayerSums {
+  double base = 0, iface = 0, outline = 0, fill = 0, contact = 0;
+};
+
+// Layer j's columns by their definition: areas, the base islands' sheath and fill lines.
+LayerSums layer_sums(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, const SweepRates& rate, const Phase& ph,
+                     const std::vector<char>& now, const std::vector<double>& weight, int j) {
+  const int S = ph.S, cx = ph.cx;
+  const double px = g.pixel, p2 = px * px;
+  auto is_base = [&](int c) { return c >= 0 && c < ph.cells && now[c] && weight[c] < 0.5; };
+  LayerSums sum;
+  for (int c = 0; c < ph.cells; ++c) {
+    if (!now[c]) continue;
+    int trimmed = 0, edges = 0, side_trimmed[4] = {0, 0, 0, 0};
+    bool contact = false;
+    for (int p : ph.members[c]) {
+      const int i = p % g.nx, jj = p / g.nx, li = (i + S - ph.ox) % S, lj = (jj + S - ph.oy) % S;
+      contact |= v.at(v.contact, p, j) != 0;
+      if (v.at(v.trim, p, j)) {
+        ++trimmed;
+        const bool on[4] = {li == 0, li == S - 1, lj == 0, lj == S - 1};
+        for (int k = 0; k < 4; ++k) side_trimmed[k] += on[k];
+        continue;
+      }
+      const int nb[4][2] = {{i - 1, jj}, {i + 1, jj}, {i, jj - 1}, {i, jj + 1}};
+      for (const auto& ab : nb)
+        if (ab[0] >= 0 && ab[1] >= 0 && ab[0] < g.nx && ab[1] < g.ny && v.at(v.trim, ab[0] + g.nx * ab[1], j)) ++edges;
+    }
+    const double area = std::max(0.0, (S * S - trimmed) * p2 - s.xy_gap * edges * px * kStaircase);
+    sum.base += (1 - weight[c]) * area;
+    sum.iface += weight[c] * area;
+    if (contact) sum.contact += area;
+    if (weight[c] >= 0.5) continue;
+    const int nbc[4] = {c - 1, c + 1, c - cx, c + cx};
+    if (s.sheath) {
+      sum.outline += edges * px * kStaircase;
+      for (int k = 0; k < 4; ++k)
+        if (!is_base(nbc[k])) sum.outline += (S - side_trimmed[k]) * px;
+    }
+    // A fill line on the boundary with the base cell above (its free pixels on both sides), and
+    // half a link where it and the line below both end here.
+    const bool up = is_base(c + cx), down = is_base(c - cx);
+    if (up) {
+      int up_trimmed = 0;
+      for (int p : ph.members[c + cx]) up_trimmed += (p / g.nx + S - ph.oy) % S == 0 && v.at(v.trim, p, j);
+      sum.fill += std::min(S - side_trimmed[3], S - up_trimmed) * px;
+    }
+    for (int side : {-1, 1}) {
+      const bool end_up = up && !(is_base(c + side) && is_base(c + cx + side));
+      const bool end_down = down && !(is_base(c + side) && is_base(c - cx + side));
+      if (end_up) sum.fill -= rate.fill_end;
+      if (end_up && end_down) sum.fill += 0.5 * (S - side_trimmed[side < 0 ? 0 : 1]) * px;
+    }
+  }
+  return sum;
+}
+
+}  // namespace
+
 GridSweepResult reference_sweep(const SupportRaster& r, const SlicerLayers& L, const GridSweepSettings& s, int ox, int oy) {
   Voxels v = voxels(r, L, s);
   const PixelGrid& g = r.grid;
-  const int S = s.pixels_per_cell, cx = (g.nx + S - 1) / S + 1, cy = (g.ny + S - 1) / S + 1, cells = cx * cy;
-  std::vector<int> cell(static_cast<size_t>(v.n));
-  std::vector<std::vector<int>> members(static_cast<size_t>(cells));
-  for (int p = 0; p < v.n; ++p) {
-    cell[p] = (p % g.nx + S - ox) / S + cx * ((p / g.nx + S - oy) / S);
-    members[cell[p]].push_back(p);
-  }
-  const double px = g.pixel, p2 = px * px;
+  const Phase ph(g, s.pixels_per_cell, ox, oy);
+  const double p2 = g.pixel * g.pixel;
   std::vector<char> has_contact(static_cast<size_t>(L.count), 0);
   for (int p = 0; p < v.n; ++p)
     for (int j = 0; j < L.count; ++j) has_contact[j] |= v.at(v.contact, p, j);
   std::vector<SweepRates> rates;
   for (double t : support_layer_thickness(has_contact, L, s.max_support_layer_height)) rates.push_back(sweep_rates(s, L, t));
-  std::vector<char> above(static_cast<size_t>(cells), 0), now(static_cast<size_t>(cells), 0);
-  std::vector<double> dense(static_cast<size_t>(cells), 1e9), depth(static_cast<size_t>(cells), 0), weight(dense.size(), 0);
+  const size_t cells = static_cast<size_t>(ph.cells);
+  std::vector<char> above(cells, 0), now(cells, 0);
+  std::vector<double> dense(cells, 1e9), depth(cells, 0), weight(cells, 0);
   GridSweepResult out;
   for (int j = L.count - 1; j >= 0; --j) {
-    for (int c = 0; c < cells; ++c) {
+    for (int c = 0; c < ph.cells; ++c) {
       bool contact = false, has_dense = false, pass = false;
       int tops = 0;
-      for (int p : members[c]) {
+      for (int p : ph.members[c]) {
         contact |= v.at(v.contact, p, j) != 0;
         has_dense |= v.at(v.dense, p, j) != 0;
         pass |= !v.at(v.block, p, j);
@@ -184,60 +257,16 @@ GridSweepResult reference_sweep(const SupportRaster& r, const SlicerLayers& L, c
       if (now[c] && has_dense) depth[c] = rates[j].interface_depth;
       weight[c] = std::clamp(depth[c] - dense[c], 0.0, 1.0);
     }
-    double base = 0, iface = 0, outline = 0, fill = 0;
-    auto is_base = [&](int c) { return c >= 0 && c < cells && now[c] && weight[c] < 0.5; };
-    for (int c = 0; c < cells; ++c) {
-      if (!now[c]) continue;
-      int trimmed = 0, edges = 0, side_trimmed[4] = {0, 0, 0, 0};
-      bool contact = false;
-      for (int p : members[c]) {
-        const int i = p % g.nx, jj = p / g.nx, li = (i + S - ox) % S, lj = (jj + S - oy) % S;
-        contact |= v.at(v.contact, p, j) != 0;
-        if (v.at(v.trim, p, j)) {
-          ++trimmed;
-          const bool on[4] = {li == 0, li == S - 1, lj == 0, lj == S - 1};
-          for (int k = 0; k < 4; ++k) side_trimmed[k] += on[k];
-          continue;
-        }
-        const int nb[4][2] = {{i - 1, jj}, {i + 1, jj}, {i, jj - 1}, {i, jj + 1}};
-        for (const auto& ab : nb)
-          if (ab[0] >= 0 && ab[1] >= 0 && ab[0] < g.nx && ab[1] < g.ny && v.at(v.trim, ab[0] + g.nx * ab[1], j)) ++edges;
-      }
-      const double area = std::max(0.0, (S * S - trimmed) * p2 - s.xy_gap * edges * px * kStaircase);
-      base += (1 - weight[c]) * area;
-      iface += weight[c] * area;
-      if (contact) out.contact_area += area;
-      if (weight[c] >= 0.5) continue;
-      const int nbc[4] = {c - 1, c + 1, c - cx, c + cx};
-      if (s.sheath) {
-        outline += edges * px * kStaircase;
-        for (int k = 0; k < 4; ++k)
-          if (!is_base(nbc[k])) outline += (S - side_trimmed[k]) * px;
-      }
-      // A fill line on the boundary with the base cell above (its free pixels on both sides), and
-      // half a link where it and the line below both end here.
-      const bool up = is_base(c + cx), down = is_base(c - cx);
-      if (up) {
-        int up_trimmed = 0;
-        for (int p : members[c + cx]) up_trimmed += (p / g.nx + S - oy) % S == 0 && v.at(v.trim, p, j);
-        fill += std::min(S - side_trimmed[3], S - up_trimmed) * px;
-      }
-      for (int side : {-1, 1}) {
-        const bool end_up = up && !(is_base(c + side) && is_base(c + cx + side));
-        const bool end_down = down && !(is_base(c + side) && is_base(c - cx + side));
-        if (end_up) fill -= rates[j].fill_end;
-        if (end_up && end_down) fill += 0.5 * (S - side_trimmed[side < 0 ? 0 : 1]) * px;
-      }
-    }
+    const LayerSums sum = layer_sums(v, g, s, rates[j], ph, now, weight, j);
     const double t = L.thickness(j);
-    out.column_volume += t * (base + iface);
-    const SweepRates& r = rates[j];
+    out.contact_area += sum.contact;
+    out.column_volume += t * (sum.base + sum.iface);
     if (j > 0) {
-      out.base_fill += t * std::max(0.0, fill) * r.line_per_mm2;
-      out.sheath += t * outline * r.line_per_mm2;
-      out.top_interface += t * iface * r.interface_per_mm3;
+      out.base_fill += t * std::max(0.0, sum.fill) * rates[j].line_per_mm2;
+      out.sheath += t * sum.outline * rates[j].line_per_mm2;
+      out.top_interface += t * sum.iface * rates[j].interface_per_mm3;
     } else {
-      out.first_layer = first_layer(v, g, s, rates[0], cell, now);
+      out.first_layer = first_layer(v, g, s, rates[0], ph.cell, now);
     }
     above = now;
   }
