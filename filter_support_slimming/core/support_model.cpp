@@ -1,0 +1,156 @@
+#include "core/support_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "core/orientation.h"
+#include "core/parallel_for.h"
+#include "core/support_raster.h"
+#include "core/support_sweep.h"
+
+namespace slim {
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("support model: " + what);
+}
+
+void check_options(const SupportModelOptions& o) {
+  require(o.print_direction.allFinite() && o.print_direction.norm() > 0, "the print direction must be a non-zero vector");
+  require(o.alpha_max_deg > 0 && o.alpha_max_deg < 90, "alpha_max must lie strictly between 0 and 90 degrees");
+  require(o.threshold_slack_deg >= 0 && o.threshold_slack_deg < 10, "the threshold slack must lie in [0, 10) degrees");
+  require(o.layer_height > 0 && o.first_layer_height > 0 && o.max_support_layer_height >= o.layer_height,
+          "layer heights must be positive, the support's at least the object's");
+  require(o.nozzle_diameter > 0 && o.extrusion_width > 0, "nozzle and extrusion width must be positive");
+  require(o.extrusion_width > o.max_support_layer_height * (1 - M_PI / 4) && o.extrusion_width > o.first_layer_height * (1 - M_PI / 4),
+          "the extrusion width is too small for the layer height");
+  require(o.grid_spacing > o.extrusion_width, "the grid spacing must exceed the extrusion width");
+  require(o.contact_distance >= 0 && o.xy_gap >= 0 && o.dense_interface_overhang > 0, "gaps must not be negative");
+  require(o.interface_layers >= 0 && o.interface_layers <= 100, "interface layers must lie in [0, 100]");
+  require(o.first_layer_density >= 0 && o.first_layer_density <= 1, "the first layer density must lie in [0, 1]");
+  require(o.first_layer_expansion >= 0 && o.first_layer_expansion < 100, "the first layer expansion must lie in [0, 100) mm");
+  require(o.pixels_per_cell >= 1 && o.pixels_per_cell <= 32, "pixels per cell must lie in [1, 32]");
+  const int n = o.pixels_per_cell;
+  require(o.grid_phases == 1 || o.grid_phases == n || o.grid_phases == n * n, "grid phases must be 1, pixels_per_cell or its square");
+  require(o.turns >= 1 && o.turns <= 90, "turns must lie in [1, 90]");
+}
+
+GridSweepSettings sweep_settings(const SupportModelOptions& o) {
+  GridSweepSettings s;
+  s.pixels_per_cell = o.pixels_per_cell;
+  s.contact_distance = o.contact_distance;
+  s.xy_gap = o.xy_gap;
+  s.grid_spacing = o.grid_spacing;
+  s.extrusion_width = o.extrusion_width;
+  s.nozzle_diameter = o.nozzle_diameter;
+  s.max_support_layer_height = o.max_support_layer_height;
+  s.interface_layers = o.interface_layers;
+  s.sheath = o.sheath;
+  s.first_layer_density = o.first_layer_density;
+  s.first_layer_expansion = o.first_layer_expansion;
+  return s;
+}
+
+// Cell offsets (in pixels) of the phases averaged: k/n of a cell along x, a permutation along y
+// (so the n phases cover every row and column once), or every pixel offset.
+std::vector<std::pair<int, int>> phase_offsets(int per_cell, int phases) {
+  std::vector<std::pair<int, int>> out;
+  if (phases == 1) out.push_back({0, 0});
+  else if (phases == per_cell)
+    for (int k = 0; k < per_cell; ++k) out.push_back({k, (k * (per_cell - 1)) % per_cell});
+  else
+    for (int k = 0; k < per_cell * per_cell; ++k) out.push_back({k % per_cell, k / per_cell});
+  return out;
+}
+
+// The part in the print frame, turned about +Z, resting on z = 0; its faces turned over when the
+// enclosed volume is negative (an inside-out part).
+Surface print_frame(const Surface& s, const SupportModelOptions& o, double turn) {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                            rotation_to_up(o.print_direction.normalized());
+  Surface out{s.V * r.transpose(), s.F};
+  const double plate = out.V.col(2).minCoeff();
+  out.V.col(2).array() -= plate;
+  if (signed_volume(out) < 0) out = flipped(out);
+  return out;
+}
+
+PixelGrid raster_grid(const Surface& s, const SupportModelOptions& o) {
+  const Eigen::Vector3d lo = s.V.colwise().minCoeff(), hi = s.V.colwise().maxCoeff();
+  const double cell = o.grid_spacing, margin = o.first_layer_expansion + 2.0 * cell;
+  const Eigen::Vector2d centre = 0.5 * (lo + hi).head<2>();
+  PixelGrid g;
+  g.pixel = cell / o.pixels_per_cell;
+  const double below_x = std::ceil((centre.x() - lo.x() + margin) / cell), below_y = std::ceil((centre.y() - lo.y() + margin) / cell);
+  const double above_x = std::ceil((hi.x() - centre.x() + margin) / cell), above_y = std::ceil((hi.y() - centre.y() + margin) / cell);
+  require(below_x + above_x < 4096 && below_y + above_y < 4096, "the part is too large for the grid (over 4096 cells across)");
+  g.x0 = centre.x() - below_x * cell;
+  g.y0 = centre.y() - below_y * cell;
+  g.nx = static_cast<int>(below_x + above_x) * o.pixels_per_cell;
+  g.ny = static_cast<int>(below_y + above_y) * o.pixels_per_cell;
+  return g;
+}
+
+}  // namespace
+
+SupportEstimate estimate_support(const Surface& surface, const SupportModelOptions& o) {
+  check_options(o);
+  check_surface(surface);
+  require(surface.F.rows() > 0, "the surface has no faces");
+  const auto offsets = phase_offsets(o.pixels_per_cell, o.grid_phases);
+  const GridSweepSettings settings = sweep_settings(o);
+  OverhangRule rule;
+  rule.max_slope_deg = 90.0 - o.alpha_max_deg + o.threshold_slack_deg;
+  rule.dense_slope_deg = std::atan(o.layer_height / o.dense_interface_overhang) * 180.0 / M_PI;
+  rule.layer_height = o.layer_height;
+  rule.first_layer_height = o.first_layer_height;
+  rule.creases = o.bottom_creases;
+  rule.tips = o.lowest_points;
+  const ThreadScope threads(o.threads);
+  SupportEstimate est;
+  std::vector<GridSweepResult> runs;
+  for (int t = 0; t < o.turns; ++t) {
+    const Surface frame = print_frame(surface, o, M_PI * t / o.turns);
+    const double height = frame.V.col(2).maxCoeff();
+    require(height > 0, "the part has no height along the print direction");
+    SlicerLayers layers;
+    layers.first_height = o.first_layer_height;
+    layers.height = o.layer_height;
+    layers.count = static_cast<int>(std::ceil(std::max(0.0, height - o.first_layer_height) / o.layer_height)) + 2;
+    const PixelGrid grid = raster_grid(frame, o);
+    const SupportRaster raster = build_support_raster(frame, grid, rule);
+    const GridSupportSweep sweep(raster, layers, settings);
+    std::vector<GridSweepResult> phase(offsets.size());
+    parallel_for(static_cast<int>(offsets.size()), [&](int k) { phase[k] = sweep.run(offsets[k].first, offsets[k].second); });
+    runs.insert(runs.end(), phase.begin(), phase.end());
+    est.pixel_mm = grid.pixel;
+    est.layers = layers.count;
+    est.cells = (grid.nx / o.pixels_per_cell) * (grid.ny / o.pixels_per_cell);
+  }
+  const double n = static_cast<double>(runs.size());
+  est.min_phase_mm3 = INFINITY;
+  est.max_phase_mm3 = -INFINITY;
+  for (const GridSweepResult& r : runs) {
+    est.base_fill_mm3 += r.base_fill / n;
+    est.sheath_mm3 += r.sheath / n;
+    est.top_interface_mm3 += r.top_interface / n;
+    est.bottom_interface_mm3 += r.bottom_interface / n;
+    est.first_layer_mm3 += r.first_layer / n;
+    est.contact_area_mm2 += r.contact_area / n;
+    est.landing_area_mm2 += r.landing_area / n;
+    est.column_volume_mm3 += r.column_volume / n;
+    est.phase_mm3.push_back(r.total());
+    if (est.layer_mm3.size() < r.layer.size()) est.layer_mm3.resize(r.layer.size(), 0.0);
+    for (size_t j = 0; j < r.layer.size(); ++j) est.layer_mm3[j] += r.layer[j] / n;
+    est.min_phase_mm3 = std::min(est.min_phase_mm3, r.total());
+    est.max_phase_mm3 = std::max(est.max_phase_mm3, r.total());
+  }
+  est.volume_mm3 = est.base_fill_mm3 + est.sheath_mm3 + est.top_interface_mm3 + est.bottom_interface_mm3 + est.first_layer_mm3;
+  return est;
+}
+
+}  // namespace slim

@@ -1,0 +1,82 @@
+// The part seen along the print direction, pixel by pixel: what the support model sweeps.
+//
+//   SupportRaster build_support_raster(surface, grid, rule)
+//
+// Inputs
+//   surface  #V by 3 positions (mm) in the print frame (+Z up), #F by 3 outward-oriented faces
+//            sharing their vertices. The plate is wherever the caller says (the raster only
+//            reads z values).
+//   grid     PixelGrid: nx by ny square pixels of side `pixel` mm, pixel (i, j) covering
+//            [x0 + i·pixel, x0 + (i+1)·pixel) × [y0 + j·pixel, ...). It should cover the part.
+//   rule     OverhangRule: which features need support (slopes from the horizontal, degrees).
+// Output (SupportRaster)
+//   spans     for every pixel (index i + nx·j), the solid intervals [bottom, top] (mm) of the
+//             vertical ray through its centre, sorted upwards: where the faces the ray crosses
+//             wind around it (nonzero rule, so an inside-out part reads the same). Rasterised
+//             watertight: a centre on a shared edge or vertex is counted by one face only.
+//   overhangs for every pixel that an overhanging feature touches (its closed square overlaps the
+//             feature's projection: conservative, so the slicer's stretching of any contact to
+//             a whole grid cell is exact), the object layers the feature shows in there (layer
+//             k >= 1: its part between the slices of layers k - 1 and k; the voxel rasterizer of
+//             triangle_cells.h over pixels × layers) and whether it wants a dense interface.
+//             Features:
+//               - a face less steep than rule.max_slope_deg (dense when less steep than
+//                 rule.dense_slope_deg), unless its connected region of such faces reaches less
+//                 than half a layer's reach (layer_height / tan(slope)) beyond the layer below
+//                 (a lip or a fold); the faces on a region's edge also marked shifted by that
+//                 reach along their level direction (the slicer grows each overhang back into the
+//                 layer by it);
+//               - a bottom crease: an edge whose two faces both rise away from it, convex, less
+//                 steep than max_slope_deg, whose tip in the slice moves out of the layer below
+//                 grown by layer_height / tan(max slope) with square corners (the first slices
+//                 of a keel are thin islands with nothing below them); dense past the dense reach;
+//               - a lowest vertex: below all its neighbours, on at least 3 faces; dense.
+//             A pixel may carry several overhangs (one per feature touching it).
+// Cost: O(#F + #pixels touched). Deterministic (serial).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/surface.h"
+
+namespace slim {
+
+struct PixelGrid {
+  double x0 = 0.0, y0 = 0.0;  // mm, lower-left corner of pixel (0, 0)
+  double pixel = 1.0;         // mm, > 0
+  int nx = 0, ny = 0;         // pixels along x and y
+  int count() const { return nx * ny; }
+};
+
+struct OverhangRule {
+  double max_slope_deg = 46.0;    // features less steep than this (from the horizontal) overhang
+  double dense_slope_deg = 36.5;  // overhangs less steep than this want a dense interface
+  double first_layer_height = 0.2;  // mm: the slicer's layers, to say in which one a feature shows
+  double layer_height = 0.2;      // mm; also: a region of overhanging faces narrower than
+                                  // layer_height / tan(max_slope_deg) is not seen by the slicer
+  bool creases = true;            // bottom creases overhang (keels)
+  bool tips = true;               // lowest vertices overhang
+};
+
+struct SolidSpan {
+  double bottom = 0.0, top = 0.0;  // mm
+};
+
+struct PixelOverhang {
+  int pixel = 0;
+  int layer_low = 0, layer_high = 0;  // the object layers the feature shows in over the pixel
+  bool dense = false;
+};
+
+struct SupportRaster {
+  PixelGrid grid;
+  std::vector<int> span_begin;   // #pixels + 1 offsets into spans
+  std::vector<SolidSpan> spans;  // per pixel, sorted upwards, disjoint
+  std::vector<PixelOverhang> overhangs;  // sorted by pixel, then z_low
+};
+
+SupportRaster build_support_raster(const Surface& surface, const PixelGrid& grid, const OverhangRule& rule);
+
+}  // namespace slim

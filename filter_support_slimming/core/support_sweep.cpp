@@ -1,0 +1,208 @@
+#include "core/support_sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace slim {
+namespace {
+
+using Range = std::pair<int, int>;  // [lo, hi] layers, inclusive
+
+// Appends [lo, hi] to sorted, disjoint ranges, merging it with the last when they touch.
+void append_merged(std::vector<Range>& out, int lo, int hi) {
+  if (lo > hi) return;
+  if (!out.empty() && lo <= out.back().second + 1) out.back().second = std::max(out.back().second, hi);
+  else out.push_back({lo, hi});
+}
+
+// a minus b, both sorted and disjoint.
+void subtract(const Range* a, const Range* a_end, const Range* b, const Range* b_end, std::vector<Range>& out) {
+  out.clear();
+  for (; a != a_end; ++a) {
+    int lo = a->first;
+    for (const Range* c = b; c != b_end && lo <= a->second; ++c) {
+      if (c->second < lo) continue;
+      if (c->first > a->second) break;
+      if (c->first > lo) out.push_back({lo, c->first - 1});
+      lo = std::max(lo, c->second + 1);
+    }
+    if (lo <= a->second) out.push_back({lo, a->second});
+  }
+}
+
+bool covers(const std::vector<Range>& ranges, int k) {
+  for (const Range& r : ranges)
+    if (r.first <= k && k <= r.second) return true;
+  return false;
+}
+
+}  // namespace
+
+int SlicerLayers::first_slice_at_or_above(double z) const {
+  if (count <= 0 || z <= slice_z(0)) return 0;
+  int k = static_cast<int>(std::max(1.0, std::min(static_cast<double>(count), std::ceil((z - first_height) / height + 0.5))));
+  while (k > 1 && slice_z(k - 1) >= z) --k;
+  while (k < count && slice_z(k) < z) ++k;
+  return k;
+}
+
+int SlicerLayers::last_slice_at_or_below(double z) const {
+  if (count <= 0 || z < slice_z(0)) return -1;
+  int k = static_cast<int>(std::max(0.0, std::min(static_cast<double>(count - 1), std::floor((z - first_height) / height + 0.5))));
+  while (k + 1 < count && slice_z(k + 1) <= z) ++k;
+  while (k > 0 && slice_z(k) > z) --k;
+  return k;
+}
+
+namespace {
+
+using RawEvent = GridSupportSweep::RawEvent;
+
+// Events of a range of layers [lo, hi]: counted from hi down to lo, as the sweep goes down.
+void add_range(std::vector<RawEvent>& raw, int pixel, const Range& r, GridSupportSweep::Kind kind) {
+  raw.push_back({r.second, {pixel, kind, 1}});
+  if (r.first > 0) raw.push_back({r.first - 1, {pixel, kind, -1}});
+}
+
+}  // namespace
+
+SweepRates sweep_rates(const GridSweepSettings& s, const SlicerLayers& layers, double t) {
+  auto spacing = [&](double height) { return s.extrusion_width - height * (1.0 - M_PI / 4.0); };
+  const double at_t = spacing(t), at_layer = spacing(layers.height), at_first = spacing(layers.first_height);
+  SweepRates r;
+  r.line_per_mm2 = at_t;
+  // The island's outline lies half a line spacing past the cells, less half a width (a closing);
+  // the fill area is 0.4 spacings inside it, and its lines stop half a spacing short of that.
+  r.fill_end = 0.5 * s.extrusion_width + 0.4 * at_layer;
+  r.interface_per_mm3 = at_t / at_layer;   // dense: one line per line spacing
+  r.interface_depth = s.interface_layers * t / layers.height;
+  // A landing: a bridging contact layer (round lines of the nozzle's diameter, a line spacing
+  // apart) and interface_layers - 1 dense layers, where the fill would stand otherwise.
+  if (s.interface_layers > 0) {
+    const double bridge = M_PI / 4.0 * s.nozzle_diameter * s.nozzle_diameter / at_layer;
+    const double below = s.interface_layers - 1.0;
+    r.bottom_interface_per_mm2 =
+        std::max(0.0, bridge + below * t * r.interface_per_mm3 - (s.nozzle_diameter + below * t) * at_t / s.grid_spacing);
+  }
+  r.first_fill_per_mm2 = s.first_layer_density * layers.first_height;
+  r.first_sheath_per_mm = layers.first_height * at_first;
+  r.first_inset = 0.4 * at_first;
+  return r;
+}
+
+std::vector<double> support_layer_thickness(const std::vector<char>& has_contact, const SlicerLayers& layers, double max_height) {
+  const int count = layers.count;
+  std::vector<double> out(static_cast<size_t>(count), layers.height);
+  if (count > 0) out[0] = layers.first_height;
+  int below = 0;  // the layer whose top the current gap starts from
+  for (int j = 1; j < count; ++j) {
+    if (!has_contact[j]) continue;
+    const double gap = layers.print_z(j) - layers.print_z(below);
+    const double step = gap / std::max(1.0, std::ceil(gap / max_height - 1e-9));
+    for (int i = below + 1; i <= j; ++i) out[i] = step;
+    below = j;
+  }
+  return out;
+}
+
+// Per pixel, in object layers: what the part fills, what trims a support layer there (the part
+// within contact_distance above or below), what blocks the projection (filled at j or j + 1), the
+// part's top layers, and the contacts (the support layer under each overhang).
+void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<RawEvent>& raw, std::vector<int>& trim_begin,
+                                    std::vector<std::pair<int, int>>& trims, std::vector<char>& has_contact) {
+  const SlicerLayers& L = layers_;
+  const int n = grid_.count(), count = L.count;
+  const int reach = static_cast<int>(std::ceil(settings_.contact_distance / L.height - 1e-9));
+  auto contact_layer = [&](int k) {
+    const double top = L.bottom_z(k) - settings_.contact_distance + 1e-9;
+    return top < L.first_height ? -1 : static_cast<int>(std::floor((top - L.first_height) / L.height));
+  };
+  std::vector<Range> solid, trim, block, contact, dense;
+  size_t mark = 0;
+  trim_begin.assign(static_cast<size_t>(n) + 1, 0);
+  for (int p = 0; p < n; ++p) {
+    solid.clear(), trim.clear(), block.clear(), contact.clear(), dense.clear();
+    trim_begin[p] = static_cast<int>(trims.size());
+    for (int s = raster.span_begin[p]; s < raster.span_begin[p + 1]; ++s)
+      append_merged(solid, L.first_slice_at_or_above(raster.spans[s].bottom),
+                    std::min(count - 1, L.last_slice_at_or_below(raster.spans[s].top)));
+    for (const Range& x : solid) {
+      append_merged(trim, std::max(0, x.first - reach), std::min(count - 1, x.second + reach));
+      append_merged(block, std::max(0, x.first - 1), x.second);
+      add_range(raw, p, {x.second, x.second}, kTop);
+    }
+    solid_first_[p] = covers(solid, 0);
+    trimmed_first_[p] = !trim.empty() && trim.front().first == 0;
+    for (; mark < raster.overhangs.size() && raster.overhangs[mark].pixel == p; ++mark) {
+      const PixelOverhang& o = raster.overhangs[mark];
+      const int k_low = o.layer_low;
+      if (k_low >= count || (k_low > 0 && covers(solid, k_low - 1))) continue;  // hidden inside the part
+      const int high = contact_layer(std::min(count - 1, o.layer_high));
+      if (high < 0) continue;
+      const int low = std::max(0, contact_layer(k_low));
+      append_merged(contact, low, high);
+      if (o.dense) append_merged(dense, low, high);
+    }
+    for (const Range& x : trim) add_range(raw, p, x, kTrim);
+    trims.insert(trims.end(), trim.begin(), trim.end());
+    for (const Range& x : block) add_range(raw, p, x, kBlock);
+    for (const Range& x : contact) {
+      add_range(raw, p, x, kContact);
+      for (int j = x.first; j <= x.second; ++j) has_contact[j] = 1;
+    }
+    for (const Range& x : dense) add_range(raw, p, x, kDense);
+  }
+  trim_begin[n] = static_cast<int>(trims.size());
+}
+
+// The part's outline in every trimmed layer: an edge between a trimmed pixel and a free one is
+// counted in the free pixel, where the xy gap and the sheath run along it.
+void GridSupportSweep::outline_events(const std::vector<int>& trim_begin, const std::vector<std::pair<int, int>>& trims,
+                                      std::vector<RawEvent>& raw) const {
+  std::vector<Range> diff;
+  for (int j = 0; j < grid_.ny; ++j) {
+    for (int i = 0; i < grid_.nx; ++i) {
+      const int p = i + grid_.nx * j;
+      for (int q : {i + 1 < grid_.nx ? p + 1 : -1, j + 1 < grid_.ny ? p + grid_.nx : -1}) {
+        if (q < 0 || (trim_begin[p] == trim_begin[p + 1] && trim_begin[q] == trim_begin[q + 1])) continue;
+        const Range *a = trims.data() + trim_begin[p], *a_end = trims.data() + trim_begin[p + 1];
+        const Range *b = trims.data() + trim_begin[q], *b_end = trims.data() + trim_begin[q + 1];
+        subtract(a, a_end, b, b_end, diff);
+        for (const Range& x : diff) add_range(raw, q, x, kOutline);
+        subtract(b, b_end, a, a_end, diff);
+        for (const Range& x : diff) add_range(raw, p, x, kOutline);
+      }
+    }
+  }
+}
+
+GridSupportSweep::GridSupportSweep(const SupportRaster& raster, const SlicerLayers& layers, const GridSweepSettings& settings)
+    : grid_(raster.grid), layers_(layers), settings_(settings) {
+  if (layers.count <= 0 || settings.pixels_per_cell < 1) throw std::invalid_argument("support sweep: no layers or no cells");
+  const int n = grid_.count(), count = layers.count;
+  solid_first_.assign(static_cast<size_t>(n), 0);
+  trimmed_first_.assign(static_cast<size_t>(n), 0);
+  std::vector<RawEvent> raw;
+  raw.reserve(static_cast<size_t>(24) * raster.spans.size() + 4 * raster.overhangs.size());
+  std::vector<int> trim_begin;
+  std::vector<Range> trims;
+  std::vector<char> has_contact(static_cast<size_t>(count), 0);
+  pixel_events(raster, raw, trim_begin, trims, has_contact);
+  for (double t : support_layer_thickness(has_contact, layers, settings.max_support_layer_height))
+    rates_.push_back(sweep_rates(settings, layers, t));
+  outline_events(trim_begin, trims, raw);
+  // Counting sort by layer, keeping each layer's events in the order they were made.
+  event_begin_.assign(static_cast<size_t>(count) + 1, 0);
+  for (const RawEvent& r : raw) ++event_begin_[r.layer + 1];
+  for (int k = 0; k < count; ++k) {
+    if (event_begin_[k + 1] > 0) top_layer_ = k;
+    event_begin_[k + 1] += event_begin_[k];
+  }
+  events_.resize(raw.size());
+  std::vector<int> fill(event_begin_.begin(), event_begin_.end() - 1);
+  for (const RawEvent& r : raw) events_[fill[r.layer]++] = r.event;
+}
+
+}  // namespace slim
