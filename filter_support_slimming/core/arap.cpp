@@ -269,6 +269,17 @@ Points ArapSolver::solve(const std::vector<Eigen::Matrix3d>& L, const Points& V_
   return V;
 }
 
+Points ArapSolver::response(const Points& load) const {
+  const Impl& m = *impl_;
+  if (load.rows() != m.nv) throw std::invalid_argument("ArapSolver: the load must have one row per vertex");
+  Eigen::MatrixXd rhs(static_cast<Eigen::Index>(m.free_vertices.size()), 3);
+  for (size_t f = 0; f < m.free_vertices.size(); ++f) rhs.row(static_cast<Eigen::Index>(f)) = load.row(m.free_vertices[f]);
+  const Eigen::MatrixXd x = back_substitute(rhs);
+  Points V = Points::Zero(m.nv, 3);
+  for (size_t f = 0; f < m.free_vertices.size(); ++f) V.row(m.free_vertices[f]) = x.row(static_cast<Eigen::Index>(f));
+  return V;
+}
+
 double ArapSolver::energy(const Points& V, const std::vector<Eigen::Matrix3d>& L) const {
   return energies({&V}, L)(0);
 }

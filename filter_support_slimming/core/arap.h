@@ -87,6 +87,12 @@ class ArapSolver {
   // The global step: assemble_rhs + back_substitute, scattered into #V by 3.
   Points solve(const std::vector<Eigen::Matrix3d>& L, const Points& V_held) const;
 
+  // The displacement a load causes: K_ff^-1 of the free rows of `load` (#V by 3, one force per
+  // vertex), scattered into #V by 3 with the held vertices at zero: the direction in which the
+  // minimiser moves when the energy gains a term linear in the positions, -sum_v load_v · V_v (a
+  // constraint's Lagrange step, whose gradient is the load). One back-substitution.
+  Points response(const Points& load) const;
+
   // The two halves, public so a benchmark can time the bare back-substitution.
   //   assemble_rhs:    #free by 3, K_ff^-1 of it is the free vertices' solution.
   //   back_substitute: #free by 3 solution in the order of free_vertices().

@@ -8,6 +8,7 @@
 
 #include "core/coherence.h"
 #include "core/step_guards.h"
+#include "core/volume_keeping.h"
 
 namespace slim {
 
@@ -86,6 +87,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   local_.tau = std::sin(std::max(0.0, o.alpha_max_deg - o.margin_deg) * M_PI / 180.0);
   local_.max_step = o.max_step_deg * M_PI / 180.0;
   local_.edge_slack = coherence_.edge_turn_slack_deg * M_PI / 180.0;
+  local_.triage = coherence_.triage_deg * M_PI / 180.0;
   local_.proxies.max_k = o.max_k;
   {
     ScopedSeconds timer(times_.local);  // the local step's input
@@ -105,6 +107,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   for (const auto& tet_pieces : local_.pieces)
     for (const auto& pc : tet_pieces) piece_area_ += pc.second;  // AE is a share of this area
   plate_ = (mesh.V * d).minCoeff();
+  volume_target_ = signed_volume(input_);
 }
 
 // Weights: the rest volumes (the paper), with the coherent factors and the features' weight;
@@ -149,6 +152,7 @@ IterationStats SupportSlimmer::step() {
   {
     ScopedSeconds timer(times_.global);
     proposed = arap_->solve(state_.L, domain_.mesh.V);
+    if (coherence_.keep_volume) keep_volume(*arap_, domain_.embedding, input_.F, volume_target_, proposed);
   }
   ScopedSeconds timer(times_.measure);
   const Points solved = proposed;  // the global step's own minimiser, before the guards move it

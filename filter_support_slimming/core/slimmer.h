@@ -70,7 +70,7 @@ class SupportSlimmer {
   CoherenceOptions coherence_;
   EmbeddedDomain domain_;
   OverhangOptions measure_;
-  double budget_ = 0.0, plate_ = 0.0, piece_area_ = 0.0;
+  double budget_ = 0.0, plate_ = 0.0, piece_area_ = 0.0, volume_target_ = 0.0;
   LocalStep local_;
   LocalStepState state_;
   std::unique_ptr<RigidFeatures> features_;

@@ -78,12 +78,15 @@ struct CoherenceOptions {
   // The inversion guard (step_guards.h): true rolls the vertices of the tets a step would invert
   // back and goes on; false cuts the whole step back to the largest valid fraction and stops.
   bool local_inversion_guard = true;
+  // Keep the input's enclosed volume through every global step (volume_keeping.h).
+  bool keep_volume = false;
+  double triage_deg = 0.0;
 
   static CoherenceOptions none() {
     CoherenceOptions o;
     o.interior_weight = o.risky_boost = 1.0;
     o.smoothing = o.propagation = 0.0;
-    o.edge_turns = o.local_inversion_guard = false;
+    o.edge_turns = o.local_inversion_guard = o.keep_volume = false;
     return o;
   }
 };
