@@ -54,6 +54,10 @@ struct FilterFailure : std::exception {
 
 struct FilterDefinition {
   QString name;  // menu entry and .mlx name; must be unique across all MeshLab plugins
+  // PyMeshLab's name for it (ms.apply_filter(python_name, ...)), in the style of its own filters:
+  // compute_* adds attributes to the current mesh, generate_* makes a new layer. The 2022.02 glue
+  // returns it as pythonFilterName; 2020.09 has no such call.
+  QString python_name;
   QString info;  // HTML help shown at the top of the dialog
   MenuCategory category;
   int changed_data;  // MeshModel::MM_* the filter changes on the current layer (postCondition)

@@ -31,6 +31,11 @@ QString FilterSupportSlimming::filterInfo(ActionIDType filter) const {
   return f ? f->info : QString();
 }
 
+QString FilterSupportSlimming::pythonFilterName(ActionIDType filter) const {
+  const auto* f = find_filter(filter);
+  return f ? f->python_name : QString();
+}
+
 FilterPlugin::FilterClass FilterSupportSlimming::getClass(const QAction* action) const {
   return slim::plugin::filter_class<FilterPlugin>(filter_definitions().at(ID(action)).category);
 }

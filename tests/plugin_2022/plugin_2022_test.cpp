@@ -17,6 +17,7 @@
 #include "core/overhang.h"
 #include "filter_checks.h"
 #include "harness.h"
+#include "meshlab_api.h"
 #include "support/shapes.h"
 #include "vcg_adapters/surface_adapter.h"
 
@@ -112,7 +113,7 @@ TEST_F(Plugin2022, BadParametersFailWithTheirReasonAndTouchNothing) {
   const std::vector<Case> cases = {
       {"angle out of range", kOverhang, [](RichParameterList& p) { p.setValue("alphaMax", FloatValue(95.0f)); }, "[0, 90)"},
       {"no print direction", kOverhang,
-       [](RichParameterList& p) { p.setValue("printDirection", Point3fValue(vcg::Point3f(0, 0, 0))); }, "print direction"},
+       [](RichParameterList& p) { p.setValue("printDirection", meshlab_api::Point3Value(vcg::Point3f(0, 0, 0))); }, "print direction"},
       {"enum out of range", kSlimming, [](RichParameterList& p) { p.setValue("method", IntValue(7)); }, "must be one of 0..1"},
       {"memory guard", kSlimming, [](RichParameterList& p) { p.setValue("resolution", IntValue(100000)); }, "resolution"},
       {"rigid features without a selection", kSlimming,
