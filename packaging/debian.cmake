@@ -7,13 +7,16 @@
 set(SLIM_DEB_PACKAGE "meshlab-support-slimming")
 set(SLIM_DEB_MAINTAINER "support-slimming maintainers <support-slimming@users.noreply.github.com>" CACHE STRING
     "Maintainer field of the Debian package")
-execute_process(COMMAND dpkg-query -W -f=${Version} meshlab OUTPUT_VARIABLE SLIM_DEB_MESHLAB_VERSION
+execute_process(COMMAND dpkg-query -W "-f=\${Version}" meshlab OUTPUT_VARIABLE SLIM_DEB_MESHLAB_VERSION
                 ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE)
 execute_process(COMMAND dpkg --print-architecture OUTPUT_VARIABLE SLIM_DEB_ARCH ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE)
 execute_process(COMMAND sh -c ". /etc/os-release && echo \${VERSION_CODENAME:-unstable}" OUTPUT_VARIABLE SLIM_DEB_DISTRIBUTION
                 ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE)
 # The Debian revision names the MeshLab it is for: one package per MeshLab release.
 set(SLIM_DEB_VERSION "${PROJECT_VERSION}-1+meshlab${MESHLAB_VERSION}")
+if(NOT SLIM_DEB_MESHLAB_VERSION)
+  message(WARNING "meshlab is not installed (dpkg-query): the Debian package cannot be made here")
+endif()
 set(doc "share/doc/${SLIM_DEB_PACKAGE}")
 
 # Debian policy: copyright as is, changelog gzip -9n (no name, no time stamp).
@@ -43,8 +46,8 @@ set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_PACKAGE_HOMEPAGE "https://github.com/support-slimming/support-slimming")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "MeshLab filters that cut the support material of 3D prints")
-set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "MeshLab filters that cut the support material of 3D prints
-Overhang Analysis colours and selects the faces of a mesh that need support
+# The synopsis is the summary; CPack puts the description below it.
+set(CPACK_PACKAGE_DESCRIPTION "Overhang Analysis colours and selects the faces of a mesh that need support
 when it is 3D printed. Support Slimming reshapes the mesh, as rigidly as
 possible, so that fewer faces overhang (Direct Computation of Minimal Rotation
 for Support Slimming), and Print Orientation finds the print pose that needs

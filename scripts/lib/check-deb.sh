@@ -23,5 +23,5 @@ for lib in libcholmod libtet libopenblas0; do
   grep -q "$lib" <<<"$depends" || fail "it does not depend on $lib"
 done
 command -v lintian >/dev/null || fail "lintian is not installed"
-lintian --fail-on error --no-tag-display-limit "$deb" || fail "lintian reports errors (E: above)"
+lintian --fail-on error --tag-display-limit 0 "$deb" || fail "lintian reports errors (E: above)"
 echo "check-deb: $(basename "$deb"): files, dependencies and lintian ok"

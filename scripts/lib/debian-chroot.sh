@@ -91,6 +91,17 @@ chroot_mount() {
   mkdir -p "$root/src"
   mount --bind "$chroot_src" "$root/src"
   mount -o remount,bind,ro "$root/src"
+  # A checkout whose data/ or third_party/ is a symlink (a git worktree sharing them) gets the
+  # target mounted at the same path, so the link resolves inside the root too.
+  local link target
+  for link in data third_party; do
+    [ -L "$chroot_src/$link" ] || continue
+    target="$(readlink -f "$chroot_src/$link")"
+    [ -d "$target" ] || continue
+    mkdir -p "$root$target"
+    mount --bind "$target" "$root$target"
+    mount -o remount,bind,ro "$root$target"
+  done
   cp -L /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
 }
 

@@ -10,6 +10,8 @@
 #include <functional>
 #include <vector>
 
+#include <QRegularExpression>
+
 #include <common/plugins/meshlab_plugin_type.h>
 #include <common/plugins/plugin_manager.h>
 
@@ -52,18 +54,21 @@ TEST_F(Plugin2022, MeshLabAcceptsThePlugin) {
     FAIL() << e.what();
   }
 
-  EXPECT_EQ(h.plugin()->getMLVersion().first, "2022.02");
+  EXPECT_EQ(h.plugin()->getMLVersion().first, SLIM_BUILT_FOR_MESHLAB);  // ML_VERSION of the sources
   EXPECT_FALSE(h.plugin()->getMLVersion().second);  // float, like Debian's MeshLab
   const QJsonObject meta = h.metaData();
   EXPECT_EQ(meta.value("name").toString(), "Support Slimming");
   EXPECT_EQ(meta.value("license").toString(), "GPL-3.0-or-later");
-  EXPECT_EQ(meta.value("meshlabVersion").toString(), "2022.02");
+  EXPECT_EQ(meta.value("meshlabVersion").toString(), SLIM_BUILT_FOR_MESHLAB);
   for (const QString& name : {kOverhang, kSlimming, kOrientation}) {
     const QAction* a = h.action(name);
     ASSERT_NE(a, nullptr) << name.toStdString();
     EXPECT_NE(h.plugin()->getClass(a), FilterPlugin::Generic);
     EXPECT_EQ(h.plugin()->filterArity(a), FilterPlugin::SINGLE_MESH);
     EXPECT_FALSE(h.plugin()->filterInfo(a).isEmpty());
+    // PyMeshLab's name, in the style of its own filters.
+    EXPECT_TRUE(QRegularExpression("^(compute|generate)_[a-z_]+$").match(h.plugin()->pythonFilterName(a)).hasMatch())
+        << h.plugin()->pythonFilterName(a).toStdString();
   }
 }
 
