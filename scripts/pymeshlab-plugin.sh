@@ -50,7 +50,8 @@ symbols="$(nm -DC --defined-only "$common")"
 grep -q 'Point3Value::Point3Value(vcg::Point3<double> const&)' <<<"$symbols" ||
   fail "$common is not a double-precision MeshLab (no Point3Value(vcg::Point3<double>)); MESHLAB_SCALAR=double would not fit"
 abi_flags=""
-if nm -D --defined-only "$common" | grep -q '__cxx11'; then
+# (A here-string, not a pipe: grep -q stopping early would fail the pipe under pipefail.)
+if grep -q 'std::__cxx11::' <<<"$symbols"; then
   say "C++ ABI: the new (C++11) std::string ABI, g++'s default"
 else
   abi_flags="-D_GLIBCXX_USE_CXX11_ABI=0"
