@@ -15,10 +15,6 @@
 #   SLIM_FORKY_ROOT      the chroot (default /var/cache/support-slimming/forky; ~1.7 GB)
 #   SLIM_DEBIAN_MIRROR   default: the Debian mirror this machine's apt uses
 set -euo pipefail
-if [ "$(id -u)" -ne 0 ]; then exec sudo --preserve-env=SLIM_FORKY_ROOT,SLIM_DEBIAN_MIRROR "$0" "$@"; fi
-source "$(dirname "${BASH_SOURCE[0]}")/lib/debian-chroot.sh"
-clean=0
-[ "${1:-}" = "--clean" ] && clean=1
 
 # Everything MeshLab 2025.07, the build and the tests need. The four libraries after dpkg-dev are
 # system plugins' dependencies that Debian's meshlab only recommends: without them MeshLab shows a
@@ -29,4 +25,6 @@ PACKAGES=(
   libsuitesparse-dev libopenblas0-pthread libtet-dev
   libgtest-dev xdotool lintian
 )
-meshlab_chroot_check meshlab2025 forky "${SLIM_FORKY_ROOT:-/var/cache/support-slimming/forky}" "$clean" "${PACKAGES[@]}"
+
+source "$(dirname "${BASH_SOURCE[0]}")/lib/debian-chroot.sh"
+meshlab_chroot_check meshlab2025 forky SLIM_FORKY_ROOT /var/cache/support-slimming/forky "$@"

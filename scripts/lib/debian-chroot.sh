@@ -179,17 +179,22 @@ deb_checks() { in_root "/src/scripts/lib/check-deb.sh '$1'"; }
 
 # The check of a MeshLab of the FilterPlugin API in its Debian release, shared by
 # scripts/test-meshlab2022.sh and scripts/test-meshlab2025.sh:
-#   meshlab_chroot_check TAG SUITE ROOT CLEAN PACKAGE...
-# installs PACKAGE... (meshlab among them) in the SUITE root, fetches the installed meshlab's
-# sources into /opt/meshlab-VERSION, builds this checkout (read-only at /src) for the 2022.02 API
-# in /var/tmp/slim-build-TAG (kept, so re-runs build incrementally; CLEAN=1 starts afresh), and
-# runs ctest -L meshlabYYYY there: the plugin harness and the GUI smoke check.
+#   meshlab_chroot_check TAG SUITE ROOT_VARIABLE DEFAULT_ROOT [--clean]
+# installs the global array PACKAGES (meshlab among them) in the SUITE root (${!ROOT_VARIABLE},
+# else DEFAULT_ROOT), fetches the installed meshlab's sources into /opt/meshlab-VERSION, builds
+# this checkout (read-only at /src) for the 2022.02 API in /var/tmp/slim-build-TAG (kept, so
+# re-runs build incrementally; --clean starts afresh), runs ctest -L meshlabYYYY there (the
+# plugin harness and the GUI smoke check), and makes and checks that release's .deb. Re-runs
+# itself through sudo when not root.
 meshlab_chroot_check() {
-  local tag="$1" suite="$2" root="$3" clean="$4"
+  local tag="$1" suite="$2" root_variable="$3" default_root="$4" clean=0
   shift 4
+  if [ "$(id -u)" -ne 0 ]; then exec sudo --preserve-env="$root_variable,SLIM_DEBIAN_MIRROR" "$0" "$@"; fi
+  [ "${1:-}" = "--clean" ] && clean=1
+  local root="${!root_variable:-$default_root}"
   local build="/var/tmp/slim-build-$tag" version label
   chroot_setup "$tag" "$suite" "$root"
-  chroot_install "$@"
+  chroot_install "${PACKAGES[@]}"
   version="$(in_root "dpkg-query -W -f='\${Version}' meshlab")"
   version="${version%%[+~]*}"
   label="meshlab${version:0:4}"
