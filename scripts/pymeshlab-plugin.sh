@@ -15,6 +15,7 @@
 #
 # Usage: scripts/pymeshlab-plugin.sh [BUILD_DIR]      (default: build-pymeshlab/ in this checkout)
 # Environment: SLIM_SOURCE_CACHE (default /var/cache/support-slimming/src), MESHLAB_SOURCE_DIR,
+#              SLIM_CCACHE_DIR (default /var/cache/support-slimming/ccache-pymeshlab),
 #              SLIM_DEBIAN_MIRROR (default: the Debian mirror this machine's apt uses)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -92,9 +93,20 @@ fi
   fail "$source_dir holds MeshLab $(cat "$source_dir/ML_VERSION"), pymeshlab needs $meshlab_version"
 
 # ---- the build ----------------------------------------------------------------------------------------
+# ccache, with paths taken relative to this checkout, lets a fresh checkout elsewhere (CI's)
+# reuse the objects of files whose contents did not change.
+if ! command -v ccache >/dev/null; then
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO=sudo
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq ccache >/dev/null
+fi
+export CCACHE_DIR="${SLIM_CCACHE_DIR:-$(dirname "${SLIM_SOURCE_CACHE:-/var/cache/support-slimming/src}")/ccache-pymeshlab}"
+mkdir -p "$CCACHE_DIR" 2>/dev/null && [ -w "$CCACHE_DIR" ] || export CCACHE_DIR="$HOME/.cache/ccache"
+export CCACHE_BASEDIR="$here"
 generator=()
 command -v ninja >/dev/null 2>&1 && [ ! -f "$build/Makefile" ] && generator=(-G Ninja)
 cmake -S "$here" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DSLIM_BUILD_BENCH=OFF \
+  -DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
   -DSLIM_MESHLAB_API=2022.02 -DMESHLAB_SOURCE_DIR="$source_dir" -DMESHLAB_LIBRARY_DIR="$wheel_lib" \
   -DMESHLAB_SCALAR=double -DSLIM_PYMESHLAB_PYTHON="$python_exe" -DCMAKE_CXX_FLAGS="$abi_flags" >&2
 cmake --build "$build" -j 2 --target filter_support_slimming >&2

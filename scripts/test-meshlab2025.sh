@@ -23,7 +23,7 @@ PACKAGES=(
   meshlab cmake g++ ninja-build qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev xvfb xauth dpkg-dev
   lib3ds-1-3 libmuparser2v5 libopenctm1 libqhull-r8.0
   libsuitesparse-dev libopenblas0-pthread libtet-dev
-  libgtest-dev xdotool lintian
+  libgtest-dev xdotool lintian ccache
 )
 
 source "$(dirname "${BASH_SOURCE[0]}")/lib/debian-chroot.sh"

@@ -15,6 +15,8 @@
 #                                 cached root stays as it was
 #   deb_checks DEB                checks a .deb inside the root: its files and dependencies, lintian
 #   stage TEXT / stage_done       a timed step: "=== [TAG] TEXT" ... "=== [TAG] done in N s"
+#   meshlab_chroot_check ...      the whole MeshLab check of test-meshlab2022.sh and
+#                                 test-meshlab2025.sh (below)
 #
 # The root is made in ROOT.partial and renamed when complete, so an interrupted run never leaves
 # a root that looks usable. SLIM_DEBIAN_MIRROR overrides the mirror (default: the one this
@@ -146,7 +148,7 @@ chroot_install() {
   installed="$(in_root "dpkg-query -W -f='\${Package} \${Status}\n' $* 2>/dev/null | grep -c 'install ok installed' || true")"
   [ "$installed" -eq "$#" ] && return 0
   stage "installing $*"
-  in_root "apt-get update -qq && apt-get install -y -qq --no-install-recommends $* >/dev/null"
+  in_root "apt-get update -qq && apt-get install -y -qq --no-install-recommends $* >/dev/null && apt-get clean"
   stage_done
 }
 
@@ -203,7 +205,10 @@ meshlab_chroot_check() {
   [ -f "$chroot_src/data/bunny.ply" ] || "$chroot_src/scripts/setup.sh"
   stage "building the plugin and its tests for MeshLab $version"
   [ "$clean" = 1 ] && rm -rf --one-file-system "$root$build"
+  # ccache (its cache in the root's /root/.cache) makes the rebuild of a fresh checkout, all of
+  # whose files are new to ninja, cost only the files whose contents changed.
   in_root "cmake -S /src -B $build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSLIM_MESHLAB_API=2022.02 \
+             -DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
              -DMESHLAB_SOURCE_DIR=/opt/meshlab-$version -DSLIM_DATA_DIR=/src/data -DSLIM_BUILD_BENCH=OFF >/dev/null
            cmake --build $build -j 2 --target slim_filterplugin_tests"
   stage_done
