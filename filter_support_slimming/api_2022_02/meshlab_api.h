@@ -1,14 +1,14 @@
 // MeshLab 2022.02's names for what filters.cpp uses, and the calls that changed since 2020.09
-// (api_2020_09/meshlab_api.h has the same declarations for that API). Later releases keep the
-// FilterPlugin API but split common/parameters/ into rich_parameter/*.h and value/*.h (2023.12
-// and 2025.07) and renamed three classes; the names below are the same for all of them.
+// (api_2020_09/meshlab_api.h has the same declarations for that API). Later releases (2025.07)
+// keep the FilterPlugin API but split common/parameters/ into rich_parameter/*.h and value/*.h
+// and renamed three classes; the names below are the same for all of them.
 #pragma once
 
 #include <common/GLLogStream.h>
 #include <common/ml_document/mesh_document.h>
 #include <common/parameters/rich_parameter_list.h>
 
-// 2023.12 and later: the split headers (rich_parameter_list.h includes them all).
+// The split headers of later releases (rich_parameter_list.h includes them all).
 #if __has_include(<common/parameters/rich_parameter/rich_percentage.h>)
 #define SLIM_MESHLAB_SPLIT_PARAMETERS 1
 #endif
