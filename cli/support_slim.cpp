@@ -10,7 +10,7 @@
 #include <vector>
 
 
-#include "core/orientation.h"
+#include "core/oriented_slimming.h"
 #include "core/slimming.h"
 #include "vcg_adapters/mesh_io.h"
 
@@ -151,24 +151,7 @@ int main(int argc, char** argv) {
 
   try {
     slim::vcgx::FaceExtras extras;
-    slim::Surface mesh = slim::vcgx::load_surface(in, &extras);
-    // Orientation first: the part turns rigidly into its print pose and is slimmed there, so the
-    // slimming's displacement and volume figures count the deformation alone.
-    slim::OrientationResult orientation;
-    if (orient) {
-      slim::OrientationOptions oo = slim::with_effort(effort);
-      oo.alpha_max_deg = o.alpha_max_deg;
-      oo.plate_tolerance = o.plate_tolerance;
-      oo.threads = o.threads;
-      if (!quiet) std::fprintf(stderr, "[orient] searching the print direction\n");
-      orientation = slim::optimize_orientation(mesh, oo);
-      mesh = slim::apply_orientation(mesh, orientation.rotation);
-      if (o.plate_tolerance < 0) o.plate_tolerance = orientation.plate_tolerance;  // one plate rule for both steps
-      if (!oriented_out.empty()) {
-        const slim::OverhangReport pose = slim::print_pose_overhang(mesh, orientation, o.alpha_max_deg);
-        slim::vcgx::save_surface(oriented_out, mesh, {pose.quality, pose.risky});
-      }
-    }
+    const slim::Surface mesh = slim::vcgx::load_surface(in, &extras);
     if (!features_file.empty()) o.rigid_features = read_face_ids(features_file, mesh.F.rows());
     if (features_from_mesh) {
       if (extras.selected.empty()) die(in + " carries no face selection to use as rigid features");
@@ -181,7 +164,21 @@ int main(int argc, char** argv) {
         return true;
       };
     }
-    const slim::SlimmingResult r = slim::slim_supports(mesh, o);
+    // Orientation first: the part turns rigidly into its print pose and is slimmed there, so the
+    // slimming's displacement and volume figures count the deformation alone.
+    slim::OrientedSlimming job;
+    if (orient) {
+      if (!quiet) std::fprintf(stderr, "[orient] searching the print direction\n");
+      job = slim::slim_in_best_pose(mesh, o, slim::with_effort(effort));
+      if (!oriented_out.empty()) {
+        const slim::OverhangReport pose = slim::print_pose_overhang(job.posed, job.orientation, o.alpha_max_deg);
+        slim::vcgx::save_surface(oriented_out, job.posed, {pose.quality, pose.risky});
+      }
+    } else {
+      job.slimming = slim::slim_supports(mesh, o);
+    }
+    const slim::SlimmingResult& r = job.slimming;
+    const slim::OrientationResult& orientation = job.orientation;
     slim::vcgx::save_surface(out, r.surface, {r.after.quality, r.after.risky});
 
     const slim::IterationStats& last = r.history.back();

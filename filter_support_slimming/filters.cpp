@@ -6,7 +6,7 @@
 
 #include <vcg/complex/append.h>
 
-#include "core/orientation.h"
+#include "core/oriented_slimming.h"
 #include "core/overhang.h"
 #include "core/slimming.h"
 #include "vcg_adapters/surface_adapter.h"
@@ -315,17 +315,13 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   // Everything is computed before the document is touched: a failure or a cancel leaves no layer.
   // With the orientation first, the part turns rigidly into its print pose and is slimmed there,
   // so the displacement and the volume change are the deformation's alone.
-  slim::Surface surface = slim::vcgx::to_surface(input.cm);
+  const slim::Surface surface = slim::vcgx::to_surface(input.cm);
   const bool orient = par.getBool("optimizeOrientation");
-  slim::OrientationResult orientation;
-  if (orient) {
-    slim::OrientationOptions oo = orientation_options(par.getFloat("alphaMax"), 1);
-    oo.plate_tolerance = options.plate_tolerance;
-    orientation = slim::optimize_orientation(surface, oo);
-    surface = slim::apply_orientation(surface, orientation.rotation);
-    options.print_direction = Eigen::Vector3d::UnitZ();
-  }
-  const slim::SlimmingResult r = slim::slim_supports(surface, options);
+  slim::OrientedSlimming job;
+  if (orient) job = slim::slim_in_best_pose(surface, options, orientation_options(par.getFloat("alphaMax"), 1));
+  else job.slimming = slim::slim_supports(surface, options);
+  const slim::SlimmingResult& r = job.slimming;
+  const slim::OrientationResult& orientation = job.orientation;
   add_result_layer(md, input, "slimmed", orient ? ResultFrame::PrintPose : ResultFrame::Input, r.surface.V,
                    r.after.quality, r.after.risky, &r.displacement);
   if (orient) log_orientation(run, "Support Slimming", orientation, false);  // slimming notes it below
@@ -374,6 +370,21 @@ const std::vector<FilterDefinition>& filter_definitions() {
 const FilterDefinition* find_filter(int id) {
   const auto& filters = filter_definitions();
   return id >= 0 && id < static_cast<int>(filters.size()) ? &filters[static_cast<size_t>(id)] : nullptr;
+}
+
+QString filter_name(int id) {
+  const FilterDefinition* f = find_filter(id);
+  return f ? f->name : QString();
+}
+
+QString filter_info(int id) {
+  const FilterDefinition* f = find_filter(id);
+  return f ? f->info : QString();
+}
+
+QString filter_python_name(int id) {
+  const FilterDefinition* f = find_filter(id);
+  return f ? f->python_name : QString();
 }
 
 // ---- what every filter shares ----------------------------------------------------------------

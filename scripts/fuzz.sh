@@ -4,7 +4,7 @@
 # and the regressions (tests/fuzz/regressions) for FUZZ_SECONDS (default 60). New inputs go to
 # build-fuzz/corpus, crashes, timeouts and leaks to build-fuzz/artifacts; the exit status is
 # libFuzzer's (0: nothing found). For long runs: FUZZ_SECONDS=14400 FUZZ_JOBS=2 scripts/fuzz.sh
-# (README: Fuzzing). FUZZ_SEED fixes libFuzzer's random seed: CI passes one, so that its bounded
+# (docs/robustness.md: Fuzzing). FUZZ_SEED fixes libFuzzer's random seed: CI passes one, so that its bounded
 # run replays the same mutations every time and a red CI always means a reproducible finding,
 # not a lucky draw; exploratory runs leave it unset (a fresh seed each run). Idempotent.
 set -euo pipefail
