@@ -28,6 +28,9 @@ add_custom_target(slim_deb_changelog ALL DEPENDS "${CMAKE_BINARY_DIR}/deb/change
 install(FILES "${CMAKE_CURRENT_LIST_DIR}/copyright" "${CMAKE_BINARY_DIR}/deb/changelog.Debian.gz"
         DESTINATION "${doc}" COMPONENT deb_only EXCLUDE_FROM_ALL)
 install(FILES "${PROJECT_SOURCE_DIR}/README.md" DESTINATION "${doc}" COMPONENT deb_only EXCLUDE_FROM_ALL)
+# The pages the README links to, beside it as in the source tree.
+file(GLOB slim_doc_pages "${PROJECT_SOURCE_DIR}/docs/*.md" "${PROJECT_SOURCE_DIR}/docs/*.png")
+install(FILES ${slim_doc_pages} DESTINATION "${doc}/docs" COMPONENT deb_only EXCLUDE_FROM_ALL)
 file(GLOB slim_mlx_examples "${PROJECT_SOURCE_DIR}/examples/*.mlx")
 install(FILES ${slim_mlx_examples} DESTINATION "${doc}/examples" COMPONENT deb_only EXCLUDE_FROM_ALL)
 
