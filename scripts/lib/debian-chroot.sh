@@ -112,7 +112,11 @@ chroot_setup() {
   local suite="$2" root="$3"
   mkdir -p "$(dirname "$root")"
   exec 9>"$root.lock"
-  flock -n 9 || { echo "another script uses $root" >&2; return 1; }
+  # One user of a root at a time; another run (a second checkout's CI) is waited for.
+  if ! flock -n 9; then
+    echo "[$chroot_tag] waiting for the other script that uses $root (at most 15 min)" >&2
+    flock -w 900 9 || { echo "another script still uses $root" >&2; return 1; }
+  fi
   if [ ! -e "$root/.slim-bootstrapped" ]; then
     [ -e "$root" ] && { echo "$root exists but was not made by these scripts; remove it or choose another root" >&2; return 1; }
     chroot_bootstrap "$suite" "$root"
