@@ -28,9 +28,11 @@ void add_print_parameters(const MeshModel& m, RichParameterList& par) {
       "printDirection", vcg::Point3f(0, 0, 1), "Print direction",
       "The direction the part grows in while printing (the build plate's normal). It need not be unit length."));
   add_alpha_max_parameter(par);
-  par.addParam(RichAbsPerc("plateTolerance", 0.001f * diag, 0.0f, diag, "Build plate tolerance",
-                           "Faces whose three vertices all lie within this distance of the lowest point along "
-                           "the print direction rest on the build plate and are never risky."));
+  par.addParam(meshlab_api::RichAbsPerc("plateTolerance", 0.001f * diag, 0.0f, diag,
+                                         "Build plate tolerance",
+                                         "Faces whose three vertices all lie within this distance of the lowest "
+                                         "point along the print direction rest on the build plate and are never "
+                                         "risky."));
 }
 
 slim::OverhangOptions overhang_options(const RichParameterList& par) {
@@ -122,7 +124,8 @@ void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, Fil
         "all faces coherently",
         edges.first_flipped.c_str(), static_cast<long long>(edges.flipped_edges)));
   run.outputs["risky_area"] = report.risky_area;
-  run.outputs["risky_faces"] = static_cast<qlonglong>(report.risky_count);
+  // int, not qlonglong: PyMeshLab hands back bool, int, float and arrays, and drops the rest.
+  run.outputs["risky_faces"] = static_cast<int>(report.risky_count);
   run.outputs["total_area"] = report.total_area;
 }
 
@@ -351,13 +354,13 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
 
 const std::vector<FilterDefinition>& filter_definitions() {
   static const std::vector<FilterDefinition> filters = {
-      {"Overhang Analysis", kOverhangAnalysisInfo, MenuCategory::Quality,
+      {"Overhang Analysis", "compute_scalar_by_overhang_per_face", kOverhangAnalysisInfo, MenuCategory::Quality,
        MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_FACEFLAGSELECT,
        add_overhang_analysis_parameters, apply_overhang_analysis},
-      {"Support Slimming", kSupportSlimmingInfo, MenuCategory::Smoothing,
+      {"Support Slimming", "generate_support_slimmed_mesh", kSupportSlimmingInfo, MenuCategory::Smoothing,
        MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
        add_support_slimming_parameters, apply_support_slimming},
-      {"Print Orientation", kPrintOrientationInfo, MenuCategory::Normal,
+      {"Print Orientation", "generate_print_oriented_mesh", kPrintOrientationInfo, MenuCategory::Normal,
        MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
        add_print_orientation_parameters, apply_print_orientation},
   };
@@ -377,6 +380,11 @@ QString filter_name(int id) {
 QString filter_info(int id) {
   const FilterDefinition* f = find_filter(id);
   return f ? f->info : QString();
+}
+
+QString filter_python_name(int id) {
+  const FilterDefinition* f = find_filter(id);
+  return f ? f->python_name : QString();
 }
 
 // ---- what every filter shares ----------------------------------------------------------------

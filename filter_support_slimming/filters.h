@@ -54,6 +54,10 @@ struct FilterFailure : std::exception {
 
 struct FilterDefinition {
   QString name;  // menu entry and .mlx name; must be unique across all MeshLab plugins
+  // PyMeshLab's name for it (ms.apply_filter(python_name, ...)), in the style of its own filters:
+  // compute_* adds attributes to the current mesh, generate_* makes a new layer. The 2022.02 glue
+  // returns it as pythonFilterName; 2020.09 has no such call.
+  QString python_name;
   QString info;  // HTML help shown at the top of the dialog
   MenuCategory category;
   int changed_data;  // MeshModel::MM_* the filter changes on the current layer (postCondition)
@@ -68,9 +72,10 @@ struct FilterDefinition {
 const std::vector<FilterDefinition>& filter_definitions();
 // The filter with that id; nullptr for an id the plugin does not have.
 const FilterDefinition* find_filter(int id);
-// Its name and help; empty for an id the plugin does not have.
+// Its name, help and PyMeshLab name; empty for an id the plugin does not have.
 QString filter_name(int id);
 QString filter_info(int id);
+QString filter_python_name(int id);
 
 // The glue's FilterClass for a category; `Interface` is the API's plugin interface class, whose
 // FilterClass enum has these names in every version.

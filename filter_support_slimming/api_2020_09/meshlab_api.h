@@ -9,6 +9,7 @@ namespace slim::meshlab_api {
 
 // A 3D direction in a filter's dialog (2022.02 has a dedicated RichDirection).
 using RichDirection = ::RichPoint3f;
+using RichAbsPerc = ::RichAbsPerc;
 
 // The index an enum parameter holds (2020.09 keeps it in an EnumValue).
 inline int enum_index(const RichParameter& p) { return p.value().getEnum(); }

@@ -24,6 +24,10 @@ QString FilterSupportSlimming::pluginName() const { return "FilterSupportSlimmin
 QString FilterSupportSlimming::filterName(ActionIDType filter) const { return slim::plugin::filter_name(filter); }
 QString FilterSupportSlimming::filterInfo(ActionIDType filter) const { return slim::plugin::filter_info(filter); }
 
+QString FilterSupportSlimming::pythonFilterName(ActionIDType filter) const {
+  return slim::plugin::filter_python_name(filter);
+}
+
 FilterPlugin::FilterClass FilterSupportSlimming::getClass(const QAction* action) const {
   return slim::plugin::filter_class<FilterPlugin>(filter_definitions().at(ID(action)).category);
 }

@@ -23,6 +23,7 @@ class FilterSupportSlimming : public QObject, public FilterPlugin {
   QString pluginName() const override;
   QString filterName(ActionIDType filter) const override;
   QString filterInfo(ActionIDType filter) const override;
+  QString pythonFilterName(ActionIDType filter) const override;  // PyMeshLab's name
   FilterClass getClass(const QAction* action) const override;
   FilterArity filterArity(const QAction*) const override { return SINGLE_MESH; }
   int getPreConditions(const QAction*) const override { return MeshModel::MM_NONE; }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# GUI smoke check for MeshLab 2022.02: the real meshlab, on a private Xvfb, with our plugin in the
-# per-user extra-plugins folder $XDG_DATA_HOME/VCG/MeshLab_64bit_fp/MeshLabExtraPlugins/VERSION/,
+# GUI smoke check for MeshLab 2022.02 and later (2025.07 too): the real meshlab, on a private
+# Xvfb, with our plugin in the per-user extra-plugins folder
+# $XDG_DATA_HOME/VCG/MeshLab_64bit_fp/MeshLabExtraPlugins/VERSION/,
 # opening the sample bunny. It passes when, SLIM_GUI_SECONDS (default 10) seconds after its first
 # window appears:
 #   - meshlab is still running,
@@ -18,7 +19,7 @@ set -euo pipefail
 if [ "${1:-}" = "--inside-xvfb" ]; then
   # ---- runs on the private Xvfb: start meshlab, wait, look, and (with --run-filters) use it -------
   plugin="$2" out="$3" mesh="$4" name="$5" run_filters="${6:-}"
-  log="$out/$name.meshlab.log"  # MeshLab 2022.02 echoes its log window to stderr: "LOG: n ..."
+  log="$out/$name.meshlab.log"  # MeshLab 2022.02 and later echo the log window to stderr: "LOG: n ..."
   report="$out/$name.report"
   : >"$report"
   meshlab "$mesh" >"$log" 2>&1 &
@@ -70,7 +71,7 @@ if [ "${1:-}" = "--inside-xvfb" ]; then
     eval "$(xdotool getwindowgeometry --shell "$dialog")"  # sets WIDTH and HEIGHT
     # The dialog's last row is Close (left half) and Apply (right half).
     xdotool mousemove --window "$dialog" $((WIDTH * 3 / 4)) $((HEIGHT - 20)) click 1 || true
-    if wait_log "Applied filter $filter" 120 && grep -qE "^LOG: [0-9]+ $filter: .*risky" "$log"; then
+    if wait_log "Applied filter:? $filter" 120 && grep -qE "^LOG: [0-9]+ $filter: .*risky" "$log"; then
       echo "filter $filter: applied" >>"$report"
     else
       echo "filter $filter: no result in the log" >>"$report"

@@ -10,6 +10,8 @@
 #include <functional>
 #include <vector>
 
+#include <QRegularExpression>
+
 #include <common/plugins/meshlab_plugin_type.h>
 #include <common/plugins/plugin_manager.h>
 
@@ -17,6 +19,7 @@
 #include "core/overhang.h"
 #include "filter_checks.h"
 #include "harness.h"
+#include "meshlab_api.h"
 #include "support/shapes.h"
 #include "vcg_adapters/surface_adapter.h"
 
@@ -51,18 +54,21 @@ TEST_F(Plugin2022, MeshLabAcceptsThePlugin) {
     FAIL() << e.what();
   }
 
-  EXPECT_EQ(h.plugin()->getMLVersion().first, "2022.02");
+  EXPECT_EQ(h.plugin()->getMLVersion().first, SLIM_BUILT_FOR_MESHLAB);  // ML_VERSION of the sources
   EXPECT_FALSE(h.plugin()->getMLVersion().second);  // float, like Debian's MeshLab
   const QJsonObject meta = h.metaData();
   EXPECT_EQ(meta.value("name").toString(), "Support Slimming");
   EXPECT_EQ(meta.value("license").toString(), "GPL-3.0-or-later");
-  EXPECT_EQ(meta.value("meshlabVersion").toString(), "2022.02");
+  EXPECT_EQ(meta.value("meshlabVersion").toString(), SLIM_BUILT_FOR_MESHLAB);
   for (const QString& name : {kOverhang, kSlimming, kOrientation}) {
     const QAction* a = h.action(name);
     ASSERT_NE(a, nullptr) << name.toStdString();
     EXPECT_NE(h.plugin()->getClass(a), FilterPlugin::Generic);
     EXPECT_EQ(h.plugin()->filterArity(a), FilterPlugin::SINGLE_MESH);
     EXPECT_FALSE(h.plugin()->filterInfo(a).isEmpty());
+    // PyMeshLab's name, in the style of its own filters.
+    EXPECT_TRUE(QRegularExpression("^(compute|generate)_[a-z_]+$").match(h.plugin()->pythonFilterName(a)).hasMatch())
+        << h.plugin()->pythonFilterName(a).toStdString();
   }
 }
 
@@ -112,7 +118,7 @@ TEST_F(Plugin2022, BadParametersFailWithTheirReasonAndTouchNothing) {
   const std::vector<Case> cases = {
       {"angle out of range", kOverhang, [](RichParameterList& p) { p.setValue("alphaMax", FloatValue(95.0f)); }, "[0, 90)"},
       {"no print direction", kOverhang,
-       [](RichParameterList& p) { p.setValue("printDirection", Point3fValue(vcg::Point3f(0, 0, 0))); }, "print direction"},
+       [](RichParameterList& p) { p.setValue("printDirection", meshlab_api::Point3Value(vcg::Point3f(0, 0, 0))); }, "print direction"},
       {"enum out of range", kSlimming, [](RichParameterList& p) { p.setValue("method", IntValue(7)); }, "must be one of 0..1"},
       {"memory guard", kSlimming, [](RichParameterList& p) { p.setValue("resolution", IntValue(100000)); }, "resolution"},
       {"rigid features without a selection", kSlimming,
