@@ -11,6 +11,7 @@
 #include "core/orientation_score.h"
 #include "core/overhang.h"
 #include "core/parallel_for.h"
+#include "core/support_model.h"
 
 namespace slim {
 
@@ -257,6 +258,35 @@ void choose_best(const OrientationGeometry& g, const OrientationOptions& o, cons
   result.rotation = rotation_to_up(result.best.direction);
 }
 
+// The support model's verdict on the best candidates (step 5): each judged in its pose, the least
+// support first; the score decides between supports within 1% (+1 mm³: the model's phase noise).
+void judge_by_support(const Surface& oriented, const OrientationOptions& o, OrientationResult& result) {
+  const size_t judged = std::min(result.top.size(), static_cast<size_t>(std::max(0, o.support_model_candidates)));
+  if (judged == 0) return;
+  auto estimate = [&](OrientationCandidate& c) {
+    SupportModelOptions m;
+    m.print_direction = c.direction;
+    m.alpha_max_deg = o.alpha_max_deg;
+    try {
+      c.support_estimate = estimate_support(oriented, m).volume_mm3;
+    } catch (const std::invalid_argument&) {
+      c.support_estimate = -1.0;  // the model cannot judge this pose (no height): the score stands
+    }
+  };
+  estimate(result.as_given);
+  for (size_t k = 0; k < judged; ++k) estimate(result.top[k]);
+  size_t best = 0;
+  for (size_t k = 1; k < judged; ++k) {
+    const double s = result.top[k].support_estimate, b = result.top[best].support_estimate;
+    if (s < 0.0) continue;
+    if (b < 0.0 || s < b - (0.01 * b + 1.0)) best = k;
+  }
+  std::rotate(result.top.begin(), result.top.begin() + static_cast<std::ptrdiff_t>(best),
+              result.top.begin() + static_cast<std::ptrdiff_t>(best) + 1);
+  result.best = result.top.front();
+  result.rotation = rotation_to_up(result.best.direction);
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector3d> fibonacci_sphere(int count) {
@@ -316,6 +346,8 @@ OrientationResult optimize_orientation(const CheckedSurface& surface, const Orie
   const std::vector<OrientationCandidate> pool = exact_pool(g, o, c, ranked, starts, refined);
   result.as_given = pool[0];
   choose_best(g, o, pool, result);
+  const Surface& given = surface.get();
+  judge_by_support(result.inside_out ? flipped(given) : given, o, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
 }

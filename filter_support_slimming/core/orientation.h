@@ -31,7 +31,8 @@
 // contact.
 //
 // The search (deterministic; every step in a fixed order, ties to the direction nearer +Z, then to
-// the earlier candidate; the same with any thread count):
+// the earlier candidate; the same with any thread count), the score a fast prefilter and the
+// support model the judge:
 //   1. candidates: the pose as given (+Z); sphere_candidates directions on a Fibonacci sphere;
 //      for the largest flat regions of the surface (parallel faces, by area) the directions that
 //      put them face down on the plate or face up; for the largest convex-hull facets, the pose
@@ -40,7 +41,9 @@
 //   3. a pattern search on the sphere refines the refine_starts best distinct ones (halving its
 //      step from the candidate spacing down to 0.01°);
 //   4. the best pool is scored once more, exactly (the plate from every vertex, the plate rule
-//      face by face), and the best and the top distinct ones (>= distinct_deg apart) returned.
+//      face by face), and the top distinct ones (>= distinct_deg apart) kept;
+//   5. the support model estimates the support of the best support_model_candidates of them and of
+//      the pose as given, and the least support wins (ties within 1% to the better score).
 //
 // Errors: std::invalid_argument with a readable reason for a mesh with no faces, bad indices,
 // non-finite coordinates, zero extent or zero area, faces that are not consistently oriented
@@ -70,6 +73,10 @@ struct OrientationOptions {
   int hull_facets = 256;            // largest convex-hull facets tried as resting faces, >= 0
   int refine_starts = 8;            // best distinct candidates refined locally, >= 0
   int report_count = 10;            // candidates returned in OrientationResult::top, >= 1
+  // The final choice: the support model (support_model.h, what the slicer builds) judges this many
+  // of the best distinct candidates by score, and the pose as given; the least support wins (the
+  // score decides between poses within 1% of it). 0: the score alone.
+  int support_model_candidates = 8;
   double distinct_deg = 5.0;        // candidates closer than this count as one pose, [0, 180]
   int threads = 0;                  // OpenMP threads; 0: the runtime's default. Results do not
                                     // depend on it.
@@ -85,6 +92,7 @@ struct OrientationCandidate {
   double shadow_volume = 0.0;  // mm³
   double contact_area = 0.0;   // mm², faces resting on the plate
   double risky_area = 0.0;     // mm², risky faces (as in OverhangReport::risky_area)
+  double support_estimate = -1.0;  // mm³, the support model's estimate; -1: not judged by it
   std::string origin;          // "as given", "sphere", "flat face down", "flat face up", "hull facet", or
                                // one of those followed by " refined"
 };

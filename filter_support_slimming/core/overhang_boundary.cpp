@@ -72,41 +72,11 @@ OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& re
 
 double OverhangBoundary::nearest(const Eigen::Vector3d& p, Eigen::Vector3d& closest) const {
   double best = HUGE_VAL;
-  int best_segment = -1;
   if (a_.rows() == 0) return best;
-  const Eigen::Vector3i centre = grid_.cell_of(p), dims = grid_.dims();
-  const Eigen::Vector3d origin = grid_.origin(), cell = grid_.cell_size();
-  const int max_shell = dims.maxCoeff();
-  for (int shell = 0; shell <= max_shell; ++shell) {
-    Eigen::Vector3i from, to;
-    for (int k = 0; k < 3; ++k) {
-      from(k) = std::max(centre(k) - shell, 0);
-      to(k) = std::min(centre(k) + shell, dims(k) - 1);
-    }
-    for (int z = from(2); z <= to(2); ++z)
-      for (int y = from(1); y <= to(1); ++y)
-        for (int x = from(0); x <= to(0); ++x) {
-          const int ring = std::max({std::abs(x - centre(0)), std::abs(y - centre(1)), std::abs(z - centre(2))});
-          if (ring != shell) continue;  // visited in an earlier shell
-          for (int i : grid_.items(grid_.index(x, y, z))) {
-            const Eigen::Vector3d q = closest_on_segment(p, a_.row(i).transpose(), b_.row(i).transpose());
-            const double dist = (q - p).norm();
-            if (dist < best || (dist == best && i < best_segment)) {
-              best = dist;
-              best_segment = i;
-              closest = q;
-            }
-          }
-        }
-    // Every segment not seen yet lies in a cell outside the visited block, so at least as far as
-    // the nearest of the block's faces that have cells beyond them.
-    double unseen = HUGE_VAL;
-    for (int k = 0; k < 3; ++k) {
-      if (from(k) > 0) unseen = std::min(unseen, std::max(0.0, p(k) - (origin(k) + from(k) * cell(k))));
-      if (to(k) < dims(k) - 1) unseen = std::min(unseen, std::max(0.0, origin(k) + (to(k) + 1) * cell(k) - p(k)));
-    }
-    if (best < unseen) break;
-  }
+  const int i = grid_.nearest(p, [&](int s) {
+    return (closest_on_segment(p, a_.row(s).transpose(), b_.row(s).transpose()) - p).norm();
+  }, best);
+  closest = closest_on_segment(p, a_.row(i).transpose(), b_.row(i).transpose());
   return best;
 }
 

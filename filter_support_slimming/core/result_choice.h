@@ -1,39 +1,47 @@
 // Which iterate Support Slimming returns (slimming.h).
 //
-//   IterateChoice choice(input_report);
+//   IterateChoice choice(input_stats);
 //   if (choice.offer(stats)) { ...keep this iterate... }
 //
-// The iterate whose support, estimated by its shadow volume (overhang.h), is least; the risky
-// area breaks ties (an iterate with no overhang left, or only plate-level ones), and a later
-// iterate wins a full tie. An iterate with more risky area than the input never qualifies:
-// neither measure may get worse than the input's. Bending a T's arms or a mushroom's rim can
-// shrink the risky area while the overhangs left move higher and need more support, which is why
-// the shadow volume decides. When no iterate beats the input, the input is the result.
-// In: the input's OverhangReport, then each iterate's IterationStats (risky_area mm², shadow_volume
-// mm³). Out: offer() is true when the iterate is the best so far.
+// The iterate that needs the least support: by the support model's estimate of what the slicer
+// builds (support_model.h) when the run measures it (IterationStats::support_estimate > 0 for the
+// input), else by the shadow volume (overhang.h), the cruder estimate. The risky area breaks ties,
+// and a later iterate wins a full tie. An iterate with more risky area than the input never
+// qualifies: neither may get worse than the input's. When no iterate beats the input, the input is
+// the result. (Bending a T's arms or a mushroom's rim can shrink the risky area while the
+// overhangs left move higher and need more support; and the slicer closes small gaps in an
+// overhang's footprint, so cutting risky area can save nothing: the support decides.)
+// In: the input's statistics (iteration 0), then each iterate's (risky_area mm², support_estimate
+// or shadow_volume mm³). Out: offer() is true when the iterate is the best so far.
 #pragma once
 
-#include "core/overhang.h"
+#include <cmath>
+
 #include "core/slimming.h"
 
 namespace slim {
 
 class IterateChoice {
  public:
-  explicit IterateChoice(const OverhangReport& input)
-      : input_risky_(input.risky_area), best_shadow_(input.shadow_volume), best_risky_(input.risky_area) {}
+  explicit IterateChoice(const IterationStats& input)
+      : by_model_(input.support_estimate > 0.0), input_risky_(input.risky_area), best_support_(support(input)),
+        best_risky_(input.risky_area) {}
 
   bool offer(const IterationStats& s) {
-    const bool qualifies = s.risky_area <= input_risky_;
-    if (!qualifies || !(s.shadow_volume < best_shadow_ || (s.shadow_volume == best_shadow_ && s.risky_area <= best_risky_)))
-      return false;
-    best_shadow_ = s.shadow_volume;
+    // An iterate the model could not measure (NaN) never qualifies.
+    const bool qualifies = s.risky_area <= input_risky_ && !(by_model_ && std::isnan(s.support_estimate));
+    const double need = support(s);
+    if (!qualifies || !(need < best_support_ || (need == best_support_ && s.risky_area <= best_risky_))) return false;
+    best_support_ = need;
     best_risky_ = s.risky_area;
     return true;
   }
 
  private:
-  double input_risky_, best_shadow_, best_risky_;
+  double support(const IterationStats& s) const { return by_model_ ? s.support_estimate : s.shadow_volume; }
+
+  bool by_model_;
+  double input_risky_, best_support_, best_risky_;
 };
 
 }  // namespace slim

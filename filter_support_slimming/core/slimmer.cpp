@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/bend_guard.h"
 #include "core/coherence.h"
 #include "core/step_guards.h"
 #include "core/volume_keeping.h"
@@ -66,7 +67,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
                                const SlimmingOptions& o, const std::function<void(double, const std::string&)>& report)
     : input_(input.get()),
       options_(o),
-      coherence_(o.method == SlimmingMethod::Coherent ? o.coherence : CoherenceOptions::none()),
+      coherence_(coherence_of(o)),
       domain_(std::move(domain)),
       current_(input_),
       current_view_(input.derived(current_)),
@@ -85,7 +86,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   local_.pieces = constraint_pieces(domain_.embedding, mesh.T.rows(), before.on_plate, n0);
   local_.d = d;
   local_.tau = std::sin(std::max(0.0, o.alpha_max_deg - o.margin_deg) * M_PI / 180.0);
-  local_.max_step = o.max_step_deg * M_PI / 180.0;
+  local_.max_step = max_step_of(o) * M_PI / 180.0;
   local_.edge_slack = coherence_.edge_turn_slack_deg * M_PI / 180.0;
   local_.triage = coherence_.triage_deg * M_PI / 180.0;
   local_.proxies.max_k = o.max_k;
@@ -108,6 +109,8 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
     for (const auto& pc : tet_pieces) piece_area_ += pc.second;  // AE is a share of this area
   plate_ = (mesh.V * d).minCoeff();
   volume_target_ = signed_volume(input_);
+  if (coherence_.max_bend_deg > 0.0)
+    bends_ = std::make_unique<BendGuard>(input_, domain_.embedding, coherence_.max_bend_deg);
 }
 
 // Weights: the rest volumes (the paper), with the coherent factors and the features' weight;
@@ -172,6 +175,16 @@ bool SupportSlimmer::guard(Points& proposed, int& held_back, int& features_held,
     const BudgetGuard budget = keep_within_budget(domain_.mesh.V, V_, proposed, budget_, features_->vertex_feature());
     guarded = guarded || budget.moved();
     features_held = budget.groups_held;
+  }
+  if (bends_) {
+    int bent_back = 0;
+    const std::vector<int> bent = bends_->faulty_tets(proposed);
+    if (!bent.empty() &&
+        roll_back_until(V_, proposed, T, features_->vertex_feature(), bent,
+                        [&](const Points& P) { return bends_->faulty_tets(P); }, bent_back)) {
+      guarded = true;
+      held_back += bent_back;
+    }
   }
   const std::vector<int> probe = inverted_tets(proposed, T);
   if (probe.empty()) return guarded;

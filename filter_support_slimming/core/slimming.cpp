@@ -11,6 +11,7 @@
 #include "core/parallel_for.h"
 #include "core/result_choice.h"
 #include "core/slimmer.h"
+#include "core/support_model.h"
 
 // Choices the paper leaves open (the rest are documented where they live: local_step.h for the
 // constraint faces, the margin and the step cap; coherence.h for the tie-break of straight-down
@@ -31,6 +32,8 @@ void validate_coherence(const CoherenceOptions& c) {
     throw std::invalid_argument("the flat-overhang angle must be in [0, 90) degrees");
   if (!(c.edge_turn_slack_deg >= 0.0 && c.edge_turn_slack_deg <= 180.0))
     throw std::invalid_argument("the edge-turn slack must be in [0, 180] degrees");
+  if (!(c.max_step_deg > 0.0 && c.max_step_deg <= 180.0))
+    throw std::invalid_argument("the coherent rotation step cap must be in (0, 180] degrees");
 }
 
 void validate_options(const Surface& input, const SlimmingOptions& o) {
@@ -38,7 +41,7 @@ void validate_options(const Surface& input, const SlimmingOptions& o) {
   if (o.resolution < 1) throw std::invalid_argument("the voxel resolution must be at least 1 cell");
   if (o.max_k < 1) throw std::invalid_argument("the largest number of K-means proxies must be at least 1");
   if (!(o.margin_deg >= 0.0 && o.margin_deg < 45.0)) throw std::invalid_argument("the angular margin must be in [0, 45) degrees");
-  if (!(o.max_step_deg > 0.0 && o.max_step_deg <= 180.0)) throw std::invalid_argument("the rotation step cap must be in (0, 180] degrees");
+  if (!(o.max_step_deg <= 180.0)) throw std::invalid_argument("the rotation step cap must be at most 180 degrees (0: the method's)");
   if (!std::isfinite(o.max_deviation_pct)) throw std::invalid_argument("the deviation budget must be a finite percentage");
   if (!std::isfinite(o.max_deviation_mm) || o.max_deviation_mm < 0.0)
     throw std::invalid_argument("the deviation budget in mm must be finite and 0 (none) or more");
@@ -83,20 +86,39 @@ std::string embed_and_write_back(const Surface& input, const EmbeddedDomain& dom
   return why;
 }
 
+// The support model's estimate for a surface (mm³); 0 when the run does not measure it, and
+// `unmeasurable` when the model refuses the surface (a part with no height, say): the input is then
+// judged by the shadow volume alone, an iterate never chosen.
+double support_estimate(const Surface& s, const SlimmingOptions& o, double unmeasurable) {
+  if (!coherence_of(o).choose_by_support_model) return 0.0;
+  SupportModelOptions m;
+  m.print_direction = o.print_direction;
+  m.alpha_max_deg = o.alpha_max_deg;
+  m.threads = o.threads;
+  try {
+    return estimate_support(s, m).volume_mm3;
+  } catch (const std::invalid_argument&) {
+    return unmeasurable;
+  }
+}
+
 // The iterations under the stopping rule; the best iterate goes into r.
-std::string iterate(SupportSlimmer& slimmer, const SlimmingOptions& o, const std::function<void(double, const std::string&)>& report,
-                    SlimmingResult& r) {
-  IterateChoice choice(r.before);
+std::string iterate(SupportSlimmer& slimmer, const Surface& input, const SlimmingOptions& o,
+                    const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
+  IterateChoice choice(r.history.front());
   for (int it = 1; it <= o.max_iterations; ++it) {
     r.iterations_run = it;
     IterationStats st = slimmer.step();
     st.iteration = it;
+    if (r.support_before_mm3 > 0.0)
+      st.support_estimate = support_estimate(Surface{slimmer.surface_positions(), input.F}, o, std::nan(""));
     r.history.push_back(st);
     const double previous_deficit = r.history[r.history.size() - 2].risky_deficit;
     if (choice.offer(st)) {
       r.surface.V = slimmer.surface_positions();
       r.after = slimmer.overhang();
       r.displacement = slimmer.displacement();
+      r.support_after_mm3 = st.support_estimate;
       r.iterations = it;
     }
     report(0.1 + 0.9 * it / o.max_iterations, "iteration " + std::to_string(it) + ": risky area " + std::to_string(st.risky_area));
@@ -124,6 +146,7 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
     if (o.progress && !o.progress(fraction, message)) throw Cancelled();
   };
   SlimmingResult r = unchanged(input, analyse_overhang(checked, measure));
+  r.support_before_mm3 = r.support_after_mm3 = r.history[0].support_estimate = support_estimate(input, o, 0.0);
   const double budget = deviation_budget(o, diag);
   r.deviation_budget_mm = std::isfinite(budget) ? budget : 0.0;
   auto finish = [&](const std::string& why) {
@@ -144,7 +167,7 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
 
   SupportSlimmer slimmer(checked, std::move(domain), r.before, o, report);
   r.solver_backend = slimmer.backend_name();
-  std::string why = iterate(slimmer, o, report, r);
+  std::string why = iterate(slimmer, input, o, report, r);
   // The result is the best iterate; its statistics close the history.
   r.history.resize(static_cast<size_t>(r.iterations) + 1);
   r.volume_after = signed_volume(r.surface);
@@ -154,7 +177,8 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
   r.stage_seconds.global = times.global;
   r.stage_seconds.measure = times.measure;
   if (r.iterations == 0 && r.iterations_run > 0)
-    why += "; no iterate needed less support than the input (shadow volume), so the input is returned unchanged";
+    why += std::string("; no iterate needed less support than the input (") +
+           (r.support_before_mm3 > 0.0 ? "support model" : "shadow volume") + "), so the input is returned unchanged";
   return finish(why);
 }
 

@@ -58,7 +58,7 @@ struct CoherenceOptions {
   // input's risky faces.
   double interior_weight = 0.1;  // factor on tets that hold no surface face: the surface leads and
                                  // the interior follows instead of holding it back; 1 = off
-  double risky_boost = 10.0;     // factor on tets that hold faces risky at the start: their
+  double risky_boost = 5.0;      // factor on tets that hold faces risky at the start: their
                                  // rotations are carried out instead of averaged away; 1 = off
   // The local step (coherence.h).
   double smoothing = 0.5;        // share of the face-neighbouring risky tets' mean (area-weighted
@@ -78,15 +78,26 @@ struct CoherenceOptions {
   // The inversion guard (step_guards.h): true rolls the vertices of the tets a step would invert
   // back and goes on; false cuts the whole step back to the largest valid fraction and stops.
   bool local_inversion_guard = true;
-  // Keep the input's enclosed volume through every global step (volume_keeping.h).
-  bool keep_volume = false;
+  // Keep the input's enclosed volume through every global step (volume_keeping.h): what the
+  // overhangs bent up would carve out of the part goes back where it is softest.
+  bool keep_volume = true;
+  // Each tet's extra rotation per iteration, at most (degrees), unless SlimmingOptions says
+  // otherwise: small steps let the blend and the global step keep neighbours together, so the
+  // surface bends smoothly instead of creasing where stiff risky tets meet the rest.
+  double max_step_deg = 2.0;
+  // The result is the iterate that needs the least support by the support model (support_model.h,
+  // PrusaSlicer's grid support at the print direction and alpha_max); false (and in the Paper
+  // method): by the shadow volume (result_choice.h).
+  bool choose_by_support_model = true;
   double triage_deg = 0.0;
+  double max_bend_deg = 0.0;  // > 0: no surface edge bends by more than this (bend_guard.h)
 
   static CoherenceOptions none() {
     CoherenceOptions o;
     o.interior_weight = o.risky_boost = 1.0;
     o.smoothing = o.propagation = 0.0;
-    o.edge_turns = o.local_inversion_guard = o.keep_volume = false;
+    o.edge_turns = o.local_inversion_guard = o.keep_volume = o.choose_by_support_model = false;
+    o.max_step_deg = 10.0;
     return o;
   }
 };
@@ -110,7 +121,8 @@ struct SlimmingOptions {
   double stall_tolerance = 1e-3;     // stop when an iteration removes less than this share of the
                                      // initial overhang deficit
   double margin_deg = 1.0;           // solve for alpha_max - margin, measure at alpha_max
-  double max_step_deg = 10.0;        // cap on each tet's extra rotation per iteration
+  double max_step_deg = 0.0;         // cap on each tet's extra rotation per iteration (degrees);
+                                     // <= 0: the method's own (Paper 10, Coherent its option below)
   int max_k = 8;                     // K-means proxies: the largest k tried
   CoherenceOptions coherence;        // the coherent method's parts (ignored by Paper)
   // --- feature preservation (§IV-B) -------------------------------------------------------------
@@ -132,12 +144,25 @@ struct SlimmingOptions {
   std::function<bool(double, const std::string&)> progress;
 };
 
+// The coherent parts a run uses: options.coherence for the Coherent method, none for Paper.
+inline CoherenceOptions coherence_of(const SlimmingOptions& options) {
+  return options.method == SlimmingMethod::Coherent ? options.coherence : CoherenceOptions::none();
+}
+
+// The step cap a run uses (degrees): options.max_step_deg when set, else the method's.
+inline double max_step_of(const SlimmingOptions& options) {
+  return options.max_step_deg > 0.0 ? options.max_step_deg : coherence_of(options).max_step_deg;
+}
+
 struct IterationStats {
   int iteration = 0;               // 0 is the input
   double risky_area = 0.0;         // mm²
   double risky_share = 0.0;        // of the total area
   double risky_deficit = 0.0;      // mm², see OverhangReport::risky_deficit
   double shadow_volume = 0.0;      // mm³, see OverhangReport::shadow_volume
+  // mm³: the support the slicer builds, estimated by the support model (support_model.h); 0 when
+  // the run does not measure it (CoherenceOptions::choose_by_support_model off).
+  double support_estimate = 0.0;
   double energy = 0.0;             // ARAP energy of the accepted positions for this iteration's L_t
   // The global step alone: ARAP energy for this iteration's L_t at the positions it started from,
   // and at its solution before the plate, budget and inversion guards touched it. The solution
@@ -168,6 +193,8 @@ struct SlimmingStageSeconds {  // wall time per stage, summed over iterations
 struct SlimmingResult {
   Surface surface;                    // the deformed mesh, same topology as the input
   OverhangReport before, after;       // measured at alpha_max
+  // The support model's estimate for the input and the result (mm³; 0 when not measured).
+  double support_before_mm3 = 0.0, support_after_mm3 = 0.0;
   std::vector<IterationStats> history;  // history[0] is the input, one entry per kept iteration
   int iterations = 0;                 // the iteration the result comes from (0: the input)
   int iterations_run = 0;             // iterations computed, including any after the best one

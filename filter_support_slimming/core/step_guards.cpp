@@ -96,6 +96,13 @@ std::vector<int> inverted_tets(const Points& P, const Tets& T) {
 
 bool roll_back_inverting(const Points& current, Points& proposed, const Tets& T, const std::vector<int>& group,
                          std::vector<int> inverting, int& held_back) {
+  return roll_back_until(current, proposed, T, group, std::move(inverting),
+                         [&](const Points& P) { return inverted_tets(P, T); }, held_back);
+}
+
+bool roll_back_until(const Points& current, Points& proposed, const Tets& T, const std::vector<int>& group,
+                     std::vector<int> inverting, const std::function<std::vector<int>(const Points&)>& faulty,
+                     int& held_back) {
   Points trial = proposed;
   std::vector<char> back(static_cast<size_t>(current.rows()), 0);
   std::vector<char> group_back;
@@ -117,7 +124,7 @@ bool roll_back_inverting(const Points& current, Points& proposed, const Tets& T,
         for (Eigen::Index u = 0; u < current.rows(); ++u)
           if (group[static_cast<size_t>(u)] == g) hold(u);
       }
-    inverting = inverted_tets(trial, T);
+    inverting = faulty(trial);
   }
   if (!inverting.empty()) return false;
   proposed = std::move(trial);

@@ -34,6 +34,7 @@
 //     inverted there, the bisection is redone over all of them.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -56,6 +57,12 @@ std::vector<int> inverted_tets(const Points& P, const Tets& T);
 
 bool roll_back_inverting(const Points& current, Points& proposed, const Tets& T, const std::vector<int>& group,
                          std::vector<int> inverting, int& held_back);
+
+// The same rolling back for any fault: `faulty(P)` lists the tets at fault in positions P
+// (ascending). The rounds roll their vertices back until faulty() lists none.
+bool roll_back_until(const Points& current, Points& proposed, const Tets& T, const std::vector<int>& group,
+                     std::vector<int> faulty_now, const std::function<std::vector<int>(const Points&)>& faulty,
+                     int& held_back);
 
 void cut_back_to_valid(const Points& current, Points& proposed, const Tets& T, const std::vector<int>& probe);
 

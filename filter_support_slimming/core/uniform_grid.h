@@ -19,11 +19,16 @@
 //                    item's box always lies in one of the item's cells.
 //   items(c)         the items listed in cell c (index(i, j, k)), ascending.
 //   for_cells(lo, hi, visit)  visit(index) for every cell of the box, k outermost, i innermost.
+//   nearest(p, distance, best) the item nearest to p, visiting shells of cells outwards.
 //   entries(count, box_of)    the (cell, item) entries fill() would make, to choose dims first.
 #pragma once
 
-#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <vector>
+
+#include <Eigen/Core>
 
 namespace slim {
 
@@ -100,6 +105,48 @@ class UniformGrid {
   }
 
   Items items(size_t cell) const { return {items_.data() + start_[cell], items_.data() + start_[cell + 1]}; }
+
+  // The item nearest to p by distance(item) (the exact distance from p to it), with that distance;
+  // -1 and HUGE_VAL when the grid holds none. Cells are visited in shells outwards from p's own,
+  // until every item not yet seen lies in a cell beyond the nearest found (an item lies within its
+  // cells' box); ties go to the lower item. Exact, whatever the cell size.
+  template <class Distance>
+  int nearest(const Eigen::Vector3d& p, Distance&& distance, double& best) const {
+    best = HUGE_VAL;
+    int best_item = -1;
+    if (items_.empty()) return best_item;
+    const Eigen::Vector3i centre = cell_of(p);
+    const int max_shell = dims_.maxCoeff();
+    for (int shell = 0; shell <= max_shell; ++shell) {
+      Eigen::Vector3i from, to;
+      for (int k = 0; k < 3; ++k) {
+        from(k) = std::max(centre(k) - shell, 0);
+        to(k) = std::min(centre(k) + shell, dims_(k) - 1);
+      }
+      for (int z = from(2); z <= to(2); ++z)
+        for (int y = from(1); y <= to(1); ++y)
+          for (int x = from(0); x <= to(0); ++x) {
+            const int ring = std::max({std::abs(x - centre(0)), std::abs(y - centre(1)), std::abs(z - centre(2))});
+            if (ring != shell) continue;  // visited in an earlier shell
+            for (int i : items(index(x, y, z))) {
+              const double d = distance(i);
+              if (d < best || (d == best && i < best_item)) {
+                best = d;
+                best_item = i;
+              }
+            }
+          }
+      // Every item not seen yet lies in a cell outside the visited block, so at least as far as
+      // the nearest of the block's faces that have cells beyond them.
+      double unseen = HUGE_VAL;
+      for (int k = 0; k < 3; ++k) {
+        if (from(k) > 0) unseen = std::min(unseen, std::max(0.0, p(k) - (origin_(k) + from(k) * cell_(k))));
+        if (to(k) < dims_(k) - 1) unseen = std::min(unseen, std::max(0.0, origin_(k) + (to(k) + 1) * cell_(k) - p(k)));
+      }
+      if (best < unseen) break;
+    }
+    return best_item;
+  }
 
   const Eigen::Vector3d& origin() const { return origin_; }
   const Eigen::Vector3d& cell_size() const { return cell_; }

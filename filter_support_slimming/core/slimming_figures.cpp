@@ -1,0 +1,40 @@
+#include "core/slimming_figures.h"
+
+#include "core/shape_metrics.h"
+#include "core/surface_distance.h"
+
+namespace slim {
+
+namespace {
+double percent(double part, double whole) { return whole > 0.0 ? 100.0 * part / whole : 0.0; }
+}  // namespace
+
+SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& r, double reference_diagonal) {
+  SlimmingFigures f;
+  f.support_estimate_before_mm3 = r.support_before_mm3;
+  f.support_estimate_after_mm3 = r.support_after_mm3;
+  if (r.support_before_mm3 > 0.0) f.support_change_pct = 100.0 * (r.support_after_mm3 / r.support_before_mm3 - 1.0);
+  f.shadow_volume_before_mm3 = r.before.shadow_volume;
+  f.shadow_volume_after_mm3 = r.after.shadow_volume;
+  f.risky_area_before_mm2 = r.before.risky_area;
+  f.risky_area_after_mm2 = r.after.risky_area;
+  const ShapeChange shape = shape_change(before, r.surface);
+  f.volume_before_mm3 = shape.volume_input;
+  f.volume_after_mm3 = shape.volume_result;
+  f.volume_change_pct = shape.volume_change_pct;
+  f.crease_share_pct = shape.crease_share_pct;
+  f.crease_p99_deg = shape.crease_p99_deg;
+  f.hausdorff_mm = surface_distance(before, r.surface).hausdorff_mm;
+  f.hausdorff_pct = percent(f.hausdorff_mm, reference_diagonal);
+  if (r.displacement.size() > 0) {
+    f.max_displacement_mm = r.displacement.maxCoeff();
+    f.mean_displacement_mm = r.displacement.mean();
+  }
+  f.budget_mm = r.deviation_budget_mm;
+  f.budget_pct = percent(f.budget_mm, reference_diagonal);
+  f.iterations = r.iterations;
+  f.seconds = r.seconds;
+  return f;
+}
+
+}  // namespace slim

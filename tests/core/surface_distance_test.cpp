@@ -1,0 +1,74 @@
+// core/surface_distance.h: the closest point on a triangle against a dense sampling of it, the
+// grid search against a scan of every face, and known distances.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/surface_distance.h"
+#include "support/shapes.h"
+
+using namespace slim;
+
+namespace {
+
+// The distance from q to the nearest of n*(n+1)/2 points spread over the triangle.
+double sampled_distance(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                        const Eigen::Vector3d& c, int n) {
+  double best = HUGE_VAL;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; i + j <= n; ++j) {
+      const double u = double(i) / n, v = double(j) / n;
+      best = std::min(best, (a + u * (b - a) + v * (c - a) - q).norm());
+    }
+  return best;
+}
+
+}  // namespace
+
+TEST(SurfaceDistance, ClosestPointOnATriangleIsNoFartherThanAnyOfItsPoints) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Eigen::Vector3d a(g(rng), g(rng), g(rng)), b(g(rng), g(rng), g(rng));
+    Eigen::Vector3d c(g(rng), g(rng), g(rng));
+    if (trial % 10 == 0) c = a + 0.3 * (b - a);  // collinear: a flat triangle
+    const Eigen::Vector3d q(2 * g(rng), 2 * g(rng), 2 * g(rng));
+    const Eigen::Vector3d x = closest_on_triangle(q, a, b, c);
+    const double exact = (x - q).norm(), sampled = sampled_distance(q, a, b, c, 200);
+    EXPECT_LE(exact, sampled + 1e-12) << trial;
+    EXPECT_GE(exact, sampled - 0.02 * (b - a).norm() - 0.02 * (c - a).norm()) << trial;  // and on it
+  }
+}
+
+TEST(SurfaceDistance, GridSearchEqualsAScanOfEveryFace) {
+  const Surface a = test::refined(test::t_shape(), 2);
+  Surface b = test::transformed(a, test::axis_angle(Eigen::Vector3d(1, 2, 3).normalized(), 0.2), Eigen::Vector3d(1, -2, 0.5));
+  const SurfaceDistance d = surface_distance(a, b);
+  // The scan: every vertex of a against every face of b (the vertices are among the samples).
+  double scan = 0.0;
+  for (Eigen::Index v = 0; v < a.V.rows(); ++v) {
+    double best = HUGE_VAL;
+    for (Eigen::Index f = 0; f < b.F.rows(); ++f)
+      best = std::min(best, (closest_on_triangle(a.V.row(v).transpose(), b.V.row(b.F(f, 0)).transpose(), b.V.row(b.F(f, 1)).transpose(),
+                                                 b.V.row(b.F(f, 2)).transpose()) - a.V.row(v).transpose()).norm());
+    scan = std::max(scan, best);
+  }
+  EXPECT_GE(d.a_to_b_max_mm, scan - 1e-12);
+  EXPECT_GT(d.a_to_b_max_mm, 0.5);
+}
+
+TEST(SurfaceDistance, KnownDistances) {
+  const Surface s = test::icosphere(4, 10.0);
+  EXPECT_NEAR(surface_distance(s, s).hausdorff_mm, 0.0, 1e-12);
+  // A box and the same box moved up by 2: the farthest point of each is 2 from the other.
+  const Surface box = test::box({0, 0, 0}, {10, 10, 10});
+  const Surface up = test::transformed(box, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 2));
+  const SurfaceDistance d = surface_distance(box, up);
+  EXPECT_NEAR(d.hausdorff_mm, 2.0, 1e-12);
+  EXPECT_NEAR(d.a_to_b_max_mm, 2.0, 1e-12);
+  EXPECT_GT(d.a_to_b_mean_mm, 0.0);
+  EXPECT_LT(d.a_to_b_mean_mm, 2.0);
+  // A sphere and one 3% larger about the same centre: 0.3 apart everywhere (to the faceting).
+  const Surface big = test::transformed(s, 1.03 * Eigen::Matrix3d::Identity(), -0.03 * Eigen::Vector3d(0, 0, 10));
+  EXPECT_NEAR(surface_distance(s, big).hausdorff_mm, 0.3, 0.02);
+}
