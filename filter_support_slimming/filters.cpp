@@ -9,6 +9,7 @@
 #include "core/orientation.h"
 #include "core/overhang.h"
 #include "core/slimming.h"
+#include "core/welded_view.h"
 #include "vcg_adapters/surface_adapter.h"
 
 namespace slim::plugin {
@@ -67,6 +68,25 @@ MeshModel& current_triangle_mesh(MeshDocument& md) {
   return *m;
 }
 
+// The layer as the core sees it: its live vertices and faces in container order, coincident
+// vertices merged (core/welded_view.h), so that faces meeting at a seam share their vertex.
+// Results come back to every vertex of the layer, whose list and order never change.
+struct LayerView {
+  slim::Surface surface;  // the layer's own vertex and face lists
+  slim::WeldedView view;
+  explicit LayerView(const CMeshO& cm) : surface(slim::vcgx::to_surface(cm)), view(slim::weld_coincident(surface)) {}
+  // Runs `compute` on the merged surface; a refusal that names a vertex says which numbering it uses.
+  template <class Compute>
+  auto run(Compute&& compute) const {
+    try {
+      return compute(view.surface);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(e.what() + view.vertex_number_note(e.what()));
+    }
+  }
+  slim::Points positions(const slim::Points& view_after) const { return view.positions_to_input(surface.V, view_after); }
+};
+
 // Logged by both filters when the mesh is inside out (slim::inside_out).
 const char* const kInsideOutNotice =
     "the mesh is inside out (closed, with every normal pointing inwards): it was analysed with its faces turned "
@@ -95,13 +115,14 @@ void add_overhang_analysis_parameters(const MeshModel& m, RichParameterList& par
 
 void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
   MeshModel& mm = current_triangle_mesh(md);
-  const slim::Surface surface = slim::vcgx::to_surface(mm.cm);
+  const LayerView layer(mm.cm);
   // The rule reads the outside from the normals (see slimming.h): an inside-out mesh is analysed
   // turned over; faces that disagree are analysed as they are, with a warning.
-  const slim::EdgeTopology edges = slim::edge_topology(surface);
-  const bool insideOut = slim::inside_out(surface, edges);
-  const slim::OverhangReport report =
-      slim::analyse_overhang(insideOut ? slim::flipped(surface) : surface, overhang_options(par));
+  const slim::EdgeTopology edges = slim::edge_topology(layer.view.surface);
+  const bool insideOut = slim::inside_out(layer.view.surface, edges);
+  const slim::OverhangReport report = layer.run([&](const slim::Surface& s) {
+    return slim::analyse_overhang(insideOut ? slim::flipped(s) : s, overhang_options(par));
+  });
 
   // Only now that the analysis succeeded is the layer touched.
   const bool colorize = par.getBool("colorize");
@@ -229,13 +250,15 @@ MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& s
 
 void apply_print_orientation(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
   MeshModel& input = current_triangle_mesh(md);
-  const slim::Surface surface = slim::vcgx::to_surface(input.cm);
-  const slim::OrientationResult r =
-      slim::optimize_orientation(surface, orientation_options(par.getFloat("alphaMax"), par.getEnum("searchEffort")));
+  const LayerView layer(input.cm);
+  const slim::OrientationResult r = layer.run([&](const slim::Surface& s) {
+    return slim::optimize_orientation(s, orientation_options(par.getFloat("alphaMax"), par.getEnum("searchEffort")));
+  });
   if (par.getBool("applyResult")) {
-    const slim::Surface posed = slim::apply_orientation(surface, r.rotation);
+    const slim::Surface posed = slim::apply_orientation(layer.view.surface, r.rotation);
     const slim::OverhangReport report = slim::print_pose_overhang(posed, r, par.getFloat("alphaMax"));
-    add_result_layer(md, input, "oriented", ResultFrame::PrintPose, posed.V, report.quality, report.risky, nullptr);
+    add_result_layer(md, input, "oriented", ResultFrame::PrintPose, layer.positions(posed.V), report.quality,
+                     report.risky, nullptr);
   }
   log_orientation(run, "Print Orientation", r, true);
   run.outputs["shadow_volume_before"] = r.as_given.shadow_volume;
@@ -312,19 +335,21 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   // Everything is computed before the document is touched: a failure or a cancel leaves no layer.
   // With the orientation first, the part turns rigidly into its print pose and is slimmed there,
   // so the displacement and the volume change are the deformation's alone.
-  slim::Surface surface = slim::vcgx::to_surface(input.cm);
+  const LayerView layer(input.cm);
+  slim::Surface surface = layer.view.surface;
   const bool orient = par.getBool("optimizeOrientation");
   slim::OrientationResult orientation;
   if (orient) {
     slim::OrientationOptions oo = orientation_options(par.getFloat("alphaMax"), 1);
     oo.plate_tolerance = options.plate_tolerance;
-    orientation = slim::optimize_orientation(surface, oo);
+    orientation = layer.run([&](const slim::Surface& s) { return slim::optimize_orientation(s, oo); });
     surface = slim::apply_orientation(surface, orientation.rotation);
     options.print_direction = Eigen::Vector3d::UnitZ();
   }
-  const slim::SlimmingResult r = slim::slim_supports(surface, options);
-  add_result_layer(md, input, "slimmed", orient ? ResultFrame::PrintPose : ResultFrame::Input, r.surface.V,
-                   r.after.quality, r.after.risky, &r.displacement);
+  const slim::SlimmingResult r = layer.run([&](const slim::Surface&) { return slim::slim_supports(surface, options); });
+  const Eigen::VectorXd displacement = layer.view.to_input(r.displacement);
+  add_result_layer(md, input, "slimmed", orient ? ResultFrame::PrintPose : ResultFrame::Input, layer.positions(r.surface.V),
+                   r.after.quality, r.after.risky, &displacement);
   if (orient) log_orientation(run, "Support Slimming", orientation, false);  // slimming notes it below
 
   const slim::IterationStats& last = r.history.back();
@@ -334,7 +359,7 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
       r.before.risky_area > 0 ? 100.0 * (1.0 - r.after.risky_area / r.before.risky_area) : 0.0));
   run.info(QString::asprintf("Support Slimming: %d iterations in %.2f s (%s); domain %d vertices, %d tets; solver %s",
                              r.iterations, r.seconds, r.stop_reason.c_str(), r.domain_vertices, r.domain_tets,
-                             r.solver_backend.c_str()));
+                             r.solver_backend.empty() ? "none (no iteration ran)" : r.solver_backend.c_str()));
   run.info(QString::asprintf(
       "Support Slimming: displacement max %.4g, mean %.4g mm%s; volume %.6g -> %.6g mm^3 (%+.2f%%); "
       "AE %.2f%%; inverted tets %d",
