@@ -269,19 +269,16 @@ void apply_print_orientation(MeshDocument& md, const RichParameterList& par, Fil
 
 // ---- Support Slimming ------------------------------------------------------------------------
 
+// Shown at the top of the dialog, always: short, so that every parameter fits below it on a
+// 1280x1024 screen in MeshLab 2020.09. The details are in each parameter's help, which the
+// dialog's Help button shows.
 const char* const kSupportSlimmingInfo =
-    "Reshapes the mesh so that it needs less support material when 3D printed along the <i>print "
-    "direction</i>, while keeping it as rigid as possible. The mesh is embedded in a tetrahedral domain "
-    "made from voxels; each iteration rotates every tetrahedron that holds overhanging (risky) faces by the "
-    "smallest rotation that makes them self-supporting, then blends the tetrahedra back together with an "
-    "as-rigid-as-possible solve. The part's base stays on the build plate.<br>"
-    "The result is a <b>new layer</b>; the input layer is not changed. On the result, face quality is "
-    "<i>n&middot;d + sin(&alpha;<sub>max</sub>)</i> (negative means still risky), coloured on the fixed "
-    "ramp of <i>Overhang Analysis</i>; the faces that are still risky are selected; vertex quality is the "
-    "displacement in mesh units. The run stops at the iteration limit, when the risky area stops falling, "
-    "or before any vertex moves further than the deviation budget.<br>"
-    "From <i>Direct Computation of Minimal Rotation for Support Slimming</i> (incremental LP on the Gauss "
-    "sphere, area-weighted K-means proxies, &sect;IV-B rigid features).";
+    "Deforms the mesh, as rigidly as possible, so that it needs less support material when printed "
+    "along the <i>print direction</i>. The result is a <b>new layer</b>; the input layer is not changed. "
+    "The result keeps the input's vertices, their order and attributes, except: the still-risky faces "
+    "are selected, face quality is <i>n&middot;d + sin(&alpha;<sub>max</sub>)</i> (negative: risky) and "
+    "coloured as by <i>Overhang Analysis</i>, and vertex quality is the displacement. "
+    "<i>Help</i> explains each parameter.";
 
 void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par) {
   const slim::SlimmingOptions defaults;
@@ -294,21 +291,27 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
                         "non-manifold meshes). TetGen: a constrained tetrahedralization of the surface; needs a "
                         "closed, clean, non-self-intersecting mesh."));
   par.addParam(RichEnum("method", 0, QStringList() << "Coherent" << "Paper", "Method",
-                        "Coherent: the default. Neighbouring rotations agree, risky regions turn as a body, and "
-                        "flat overhangs turn towards their nearest edge. Paper: the published method as written, "
-                        "for comparison."));
+                        "Each iteration turns every tetrahedron holding risky faces by the smallest rotation that "
+                        "makes them self-supporting (an exact LP on the Gauss sphere; area-weighted K-means proxies "
+                        "when no single rotation exists), then blends the tetrahedra back together with an "
+                        "as-rigid-as-possible solve; the base stays on the build plate. Coherent (default): "
+                        "neighbouring rotations agree, risky regions turn as a body, and flat overhangs turn towards "
+                        "their nearest edge. Paper: <i>Direct Computation of Minimal Rotation for Support "
+                        "Slimming</i> as written, for comparison."));
   par.addParam(RichInt("maxIterations", defaults.max_iterations, "Max iterations",
-                       "The largest number of local/global iterations. 0 only embeds the mesh and writes it back."));
+                       "The largest number of local/global iterations; the run ends sooner when the risky area "
+                       "stops falling. 0 only embeds the mesh and writes it back."));
   par.addParam(RichFloat("maxDeviation", float(defaults.max_deviation_pct), "Deviation budget (%)",
-                         "The largest distance any vertex may move, as a percentage of the bounding box "
-                         "diagonal. The part of a step that would take a vertex further is rolled back, so no vertex "
-                         "ever moves further."));
+                         "The farthest any vertex may move, as a percentage of the bounding box diagonal. It is a "
+                         "constraint, not a stopping rule: the part of a step that would take a vertex further is "
+                         "rolled back, and the run goes on. 0: no budget."));
   par.addParam(RichInt("maxK", defaults.max_k, "Max proxies per tetrahedron",
                        "When no single rotation can make every face in a tetrahedron self-supporting, its faces "
                        "are clustered into at most this many proxy normals (area-weighted K-means)."));
   par.addParam(RichBool("preserveSelection", false, "Preserve selection as rigid features",
-                        "Each connected piece of the current face selection moves as one rigid body, so a "
-                        "feature you care about keeps its shape."));
+                        "Each connected piece of the current face selection moves as one rigid body (the paper's "
+                        "&sect;IV-B), so a feature you care about keeps its shape. The result's selection is then "
+                        "the still-risky faces, as always."));
   par.addParam(RichBool("optimizeOrientation", false, "Optimize the orientation first",
                         "First turn the part into the pose that needs the least support (as Print Orientation "
                         "does, Normal effort), then slim it there. The print direction above is then ignored: "

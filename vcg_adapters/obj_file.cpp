@@ -155,6 +155,7 @@ MeshFile read_obj(const std::string& path, const std::string& bytes) {
   }
   if (every_corner_textured && !tris.empty()) {
     file.face.wedge_texcoord.resize(static_cast<Eigen::Index>(tris.size()), 6);
+    file.face.texture = Eigen::VectorXi::Zero(static_cast<Eigen::Index>(tris.size()));
     for (size_t i = 0; i < tris.size(); ++i) file.face.wedge_texcoord.row(static_cast<Eigen::Index>(i)) = wedge[i];
   }
   file.obj = std::move(records);

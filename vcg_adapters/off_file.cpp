@@ -138,7 +138,7 @@ MeshFile read_off(const std::string& path, const std::string& bytes) {
     const std::uint64_t n = in.count(tok[0]);
     const std::string face = "face " + std::to_string(f);
     if (n < 3) refuse(path, face + " has " + std::to_string(n) + " corners (a face needs 3 or more)" + in.where());
-    if (tok.size() < n + 1) refuse(path, face + " lists fewer corners than its count " + std::to_string(n) + in.where());
+    if (n > tok.size() - 1) refuse(path, face + " lists fewer corners than its count " + std::to_string(n) + in.where());
     std::vector<int> corner(n);
     for (size_t k = 0; k < n; ++k) {
       const std::uint64_t c = in.count(tok[k + 1]);

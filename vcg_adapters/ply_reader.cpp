@@ -207,7 +207,7 @@ void read_item(DataReader& in, const std::string& path, const Element& e, Item& 
       n = in.value(p.count_size, false, p.count_signed);
       const double most = static_cast<double>(in.left()) / (in.ascii() ? 2.0 : p.size);
       if (!(n >= 0) || n > most || n != std::floor(n))
-        refuse(path, "a '" + p.name + "' list of " + std::to_string(static_cast<long long>(n)) + " values in element '" +
+        refuse(path, "a '" + p.name + "' list of " + shortest(n) + " values in element '" +
                          e.name + "' does not fit the file");
     }
     v.resize(static_cast<size_t>(n));
@@ -220,6 +220,13 @@ int find(const Element& e, std::initializer_list<const char*> names) {
     for (size_t k = 0; k < e.properties.size(); ++k)
       if (e.properties[k].name == name) return static_cast<int>(k);
   return -1;
+}
+
+// A file's number as an int flag word or index: clamped to int's range, NaN as 0 (a cast of an
+// out-of-range double is undefined).
+long long whole(double x) {
+  if (!(x == x)) return 0;
+  return static_cast<long long>(std::clamp(x, -2147483648.0, 2147483647.0));
 }
 
 unsigned char colour_byte(const Property& p, double x) {
@@ -256,7 +263,7 @@ void read_vertices(DataReader& in, const std::string& path, const Element& e, Me
           colour_byte(e.properties[b], one(b)), a >= 0 ? colour_byte(e.properties[a], one(a)) : 255;
     if (va.quality.size()) va.quality(i) = one(q);
     if (va.texcoord.rows()) va.texcoord.row(i) << one(u), one(t);
-    if (flags >= 0) va.selected[static_cast<size_t>(i)] = (static_cast<long long>(one(flags)) & kSelectedBit) != 0;
+    if (flags >= 0) va.selected[static_cast<size_t>(i)] = (whole(one(flags)) & kSelectedBit) != 0;
   }
 }
 
@@ -297,12 +304,12 @@ void read_faces(DataReader& in, const std::string& path, const Element& e, MeshF
                           colour_byte(e.properties[b], one(b, 0)),
                           a >= 0 ? colour_byte(e.properties[a], one(a, 255)) : static_cast<unsigned char>(255)});
       if (q >= 0) quality.push_back(one(q, 0));
-      if (flags >= 0) selected.push_back((static_cast<long long>(one(flags, 0)) & kSelectedBit) != 0);
+      if (flags >= 0) selected.push_back((whole(one(flags, 0)) & kSelectedBit) != 0);
       if (uv) {
         Eigen::Matrix<double, 1, 6> w;
         for (int j = 0; j < 3; ++j) w.segment<2>(2 * j) << (*uv)[2 * c[j]], (*uv)[2 * c[j] + 1];
         wedge.push_back(w);
-        texture.push_back(static_cast<int>(one(tn, 0)));
+        texture.push_back(static_cast<int>(whole(one(tn, 0))));
       }
     }
   }

@@ -37,7 +37,7 @@ void write_ply(const std::string& path, const MeshFile& source, const Points& V,
   const Eigen::VectorXd& face_quality = ramp ? results.quality : fa.quality;
   const std::vector<bool>& face_selected = results.selected.empty() ? fa.selected : results.selected;
   const bool face_colour = ramp || fa.colour.rows() > 0, wedge = fa.wedge_texcoord.rows() > 0;
-  const bool texnumber = wedge && source.textures.size() > 1;
+  const bool texnumber = wedge && (source.textures.size() > 1 || (fa.texture.array() != 0).any());
 
   std::ostringstream h;
   h << "ply\nformat binary_little_endian 1.0\ncomment written by support-slim\n";

@@ -166,7 +166,7 @@ TEST(CliFiles, StlIsWeldedAndTheSummarySaysHowMuch) {
   fs::remove_all(dir);
 }
 
-TEST(CliFiles, TheSummaryHasNoEmptyFieldWhenNothingOverhangs) {
+TEST(CliFiles, TheSummaryHasNoEmptyFieldWhenNothingOverhangsOrNothingIterates) {
   const fs::path dir = test::scratch();
   const fs::path in = dir / "box.ply", out = dir / "box_out.ply";
   vcgx::save_surface(in.string(), test::box({0, 0, 0}, {10, 10, 10}));
@@ -174,6 +174,11 @@ TEST(CliFiles, TheSummaryHasNoEmptyFieldWhenNothingOverhangs) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("no risky faces"), std::string::npos) << r.out;
   expect_no_empty_field(r.out);
+  // And with the orientation search's lines, at 0 iterations.
+  const test::CliRun o = run_cli("'" + in.string() + "' -o '" + out.string() + "' --orient --orient-effort fast --iterations 0 --quiet");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_NE(o.out.find("orientation     print direction"), std::string::npos) << o.out;
+  expect_no_empty_field(o.out);
   fs::remove_all(dir);
 }
 

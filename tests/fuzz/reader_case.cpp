@@ -24,6 +24,13 @@ bool rows_ok(const M& m, Eigen::Index rows) {
   return m.rows() == 0 || m.rows() == rows;
 }
 
+// Equal shapes and values, NaN counting as equal to NaN (a file may hold NaN qualities or normals).
+template <class A, class B>
+bool same(const A& a, const B& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  return (a.array() == b.array() || (a.array() != a.array() && b.array() != b.array())).all();
+}
+
 // What a well-formed MeshFile must satisfy, whatever the bytes were.
 std::string shape_problem(const vcgx::MeshFile& f) {
   const Eigen::Index nv = f.surface.V.rows(), nf = f.surface.F.rows();
@@ -65,17 +72,18 @@ std::string round_trip_problem(const std::string& ext, const vcgx::MeshFile& f) 
   if (back.surface.V != f.surface.V) return "read back, the vertex list differs";
   if (back.surface.F != f.surface.F) return "read back, the face list differs";
   if (back.vertex.colour != f.vertex.colour) return "read back, the vertex colours differ";
-  if (back.vertex.normal != f.vertex.normal) return "read back, the vertex normals differ";
-  if (back.vertex.texcoord.cast<float>() != f.vertex.texcoord.cast<float>()) return "read back, the texture coordinates differ";
+  if (!same(back.vertex.normal, f.vertex.normal)) return "read back, the vertex normals differ";
+  if (!same(back.vertex.texcoord.cast<float>(), f.vertex.texcoord.cast<float>())) return "read back, the texture coordinates differ";
   if (ext == "obj") {
-    if (back.face.wedge_texcoord != f.face.wedge_texcoord) return "read back, the corners' texture coordinates differ";
+    if (!same(back.face.wedge_texcoord, f.face.wedge_texcoord)) return "read back, the corners' texture coordinates differ";
     return "";
   }
   if (back.face.colour != f.face.colour) return "read back, the face colours differ";
   if (ext == "ply") {
-    if (back.vertex.quality != f.vertex.quality || back.face.quality != f.face.quality) return "read back, a quality differs";
+    if (!same(back.vertex.quality, f.vertex.quality) || !same(back.face.quality, f.face.quality))
+      return "read back, a quality differs";
     if (back.vertex.selected != f.vertex.selected || back.face.selected != f.face.selected) return "read back, a selection differs";
-    if (back.face.wedge_texcoord.cast<float>() != f.face.wedge_texcoord.cast<float>() || back.face.texture != f.face.texture)
+    if (!same(back.face.wedge_texcoord.cast<float>(), f.face.wedge_texcoord.cast<float>()) || back.face.texture != f.face.texture)
       return "read back, the corners' texture coordinates differ";
   }
   return "";

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/overhang.h"
+#include "core/welded_view.h"
 #include "support/shapes.h"
 
 namespace slim::test {
@@ -337,10 +338,11 @@ OrientationResult fast_orientation(const Surface& s, double alpha_max_deg, std::
   OrientationOptions o = with_effort(OrientationEffort::Fast);
   o.alpha_max_deg = static_cast<float>(alpha_max_deg);  // the filter's parameter is a float
   refusal.clear();
+  const WeldedView view = weld_coincident(s);  // the filter computes on the welded view
   try {
-    return optimize_orientation(s, o);
+    return optimize_orientation(view.surface, o);
   } catch (const std::invalid_argument& e) {
-    refusal = e.what();
+    refusal = e.what() + view.vertex_number_note(e.what());
     return {};
   }
 }

@@ -68,8 +68,8 @@ std::string slimming_result_problem(const Surface& input, const SlimmingOptions&
 // writes NaN and infinite coordinates too ("nan", "inf"). Throws std::runtime_error on failure.
 void write_ascii_ply(const std::string& path, const Surface& s);
 
-// What Print Orientation at its Fast effort should do with `s` at `alpha_max_deg`, by the core:
-// its result; when the core refuses, a default result and the refusal (std::invalid_argument's
+// What Print Orientation at its Fast effort should do with `s` at `alpha_max_deg`, by the core
+// (on the welded view, core/welded_view.h, as the filter computes): its result; when the core refuses, a default result and the refusal (std::invalid_argument's
 // message) in `refusal`, which is empty otherwise.
 OrientationResult fast_orientation(const Surface& s, double alpha_max_deg, std::string& refusal);
 
