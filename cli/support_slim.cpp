@@ -10,7 +10,7 @@
 #include <vector>
 
 
-#include "core/orientation.h"
+#include "core/oriented_slimming.h"
 #include "core/slimming.h"
 #include "core/welded_view.h"
 #include "vcg_adapters/mesh_io.h"
@@ -173,24 +173,7 @@ int main(int argc, char** argv) {
   try {
     const slim::vcgx::MeshFile file = slim::vcgx::read_mesh(in);
     view = slim::weld_coincident(file.surface);
-    slim::Surface mesh = view.surface;
-    // Orientation first: the part turns rigidly into its print pose and is slimmed there, so the
-    // slimming's displacement and volume figures count the deformation alone.
-    slim::OrientationResult orientation;
-    if (orient) {
-      slim::OrientationOptions oo = slim::with_effort(effort);
-      oo.alpha_max_deg = o.alpha_max_deg;
-      oo.plate_tolerance = o.plate_tolerance;
-      oo.threads = o.threads;
-      if (!quiet) std::fprintf(stderr, "[orient] searching the print direction\n");
-      orientation = slim::optimize_orientation(mesh, oo);
-      mesh = slim::apply_orientation(mesh, orientation.rotation);
-      if (o.plate_tolerance < 0) o.plate_tolerance = orientation.plate_tolerance;  // one plate rule for both steps
-      if (!oriented_out.empty()) {
-        const slim::OverhangReport pose = slim::print_pose_overhang(mesh, orientation, o.alpha_max_deg);
-        slim::vcgx::write_mesh(oriented_out, file, view.positions_to_input(file.surface.V, mesh.V), {pose.quality, pose.risky});
-      }
-    }
+    const slim::Surface& mesh = view.surface;
     if (!features_file.empty()) o.rigid_features = read_face_ids(features_file, mesh.F.rows());
     if (features_from_mesh) {
       if (file.face.selected.empty()) die(in + " carries no face selection to use as rigid features");
@@ -203,7 +186,23 @@ int main(int argc, char** argv) {
         return true;
       };
     }
-    const slim::SlimmingResult r = slim::slim_supports(mesh, o);
+    // Orientation first: the part turns rigidly into its print pose and is slimmed there, so the
+    // slimming's displacement and volume figures count the deformation alone. The core computes on
+    // the welded view; the files get the input's own vertex list back.
+    slim::OrientedSlimming job;
+    if (orient) {
+      if (!quiet) std::fprintf(stderr, "[orient] searching the print direction\n");
+      job = slim::slim_in_best_pose(mesh, o, slim::with_effort(effort));
+      if (!oriented_out.empty()) {
+        const slim::OverhangReport pose = slim::print_pose_overhang(job.posed, job.orientation, o.alpha_max_deg);
+        slim::vcgx::write_mesh(oriented_out, file, view.positions_to_input(file.surface.V, job.posed.V),
+                               {pose.quality, pose.risky});
+      }
+    } else {
+      job.slimming = slim::slim_supports(mesh, o);
+    }
+    const slim::SlimmingResult& r = job.slimming;
+    const slim::OrientationResult& orientation = job.orientation;
     slim::vcgx::write_mesh(out, file, view.positions_to_input(file.surface.V, r.surface.V), {r.after.quality, r.after.risky});
 
     const slim::IterationStats& last = r.history.back();

@@ -6,7 +6,7 @@
 
 #include <vcg/complex/append.h>
 
-#include "core/orientation.h"
+#include "core/oriented_slimming.h"
 #include "core/overhang.h"
 #include "core/slimming.h"
 #include "core/welded_view.h"
@@ -339,17 +339,15 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   // With the orientation first, the part turns rigidly into its print pose and is slimmed there,
   // so the displacement and the volume change are the deformation's alone.
   const LayerView layer(input.cm);
-  slim::Surface surface = layer.view.surface;
   const bool orient = par.getBool("optimizeOrientation");
-  slim::OrientationResult orientation;
-  if (orient) {
-    slim::OrientationOptions oo = orientation_options(par.getFloat("alphaMax"), 1);
-    oo.plate_tolerance = options.plate_tolerance;
-    orientation = layer.run([&](const slim::Surface& s) { return slim::optimize_orientation(s, oo); });
-    surface = slim::apply_orientation(surface, orientation.rotation);
-    options.print_direction = Eigen::Vector3d::UnitZ();
-  }
-  const slim::SlimmingResult r = layer.run([&](const slim::Surface&) { return slim::slim_supports(surface, options); });
+  const slim::OrientedSlimming job = layer.run([&](const slim::Surface& surface) {
+    if (orient) return slim::slim_in_best_pose(surface, options, orientation_options(par.getFloat("alphaMax"), 1));
+    slim::OrientedSlimming slimmed;
+    slimmed.slimming = slim::slim_supports(surface, options);
+    return slimmed;
+  });
+  const slim::SlimmingResult& r = job.slimming;
+  const slim::OrientationResult& orientation = job.orientation;
   const Eigen::VectorXd displacement = layer.view.to_input(r.displacement);
   add_result_layer(md, input, "slimmed", orient ? ResultFrame::PrintPose : ResultFrame::Input, layer.positions(r.surface.V),
                    r.after.quality, r.after.risky, &displacement);
@@ -399,6 +397,16 @@ const std::vector<FilterDefinition>& filter_definitions() {
 const FilterDefinition* find_filter(int id) {
   const auto& filters = filter_definitions();
   return id >= 0 && id < static_cast<int>(filters.size()) ? &filters[static_cast<size_t>(id)] : nullptr;
+}
+
+QString filter_name(int id) {
+  const FilterDefinition* f = find_filter(id);
+  return f ? f->name : QString();
+}
+
+QString filter_info(int id) {
+  const FilterDefinition* f = find_filter(id);
+  return f ? f->info : QString();
 }
 
 // ---- what every filter shares ----------------------------------------------------------------

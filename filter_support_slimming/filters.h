@@ -68,6 +68,9 @@ struct FilterDefinition {
 const std::vector<FilterDefinition>& filter_definitions();
 // The filter with that id; nullptr for an id the plugin does not have.
 const FilterDefinition* find_filter(int id);
+// Its name and help; empty for an id the plugin does not have.
+QString filter_name(int id);
+QString filter_info(int id);
 
 // The glue's FilterClass for a category; `Interface` is the API's plugin interface class, whose
 // FilterClass enum has these names in every version.

@@ -14,15 +14,8 @@ FilterSupportSlimming::FilterSupportSlimming() {
 
 QString FilterSupportSlimming::pluginName() const { return "FilterSupportSlimming"; }
 
-QString FilterSupportSlimming::filterName(FilterIDType filter) const {
-  const auto* f = find_filter(filter);
-  return f ? f->name : QString();
-}
-
-QString FilterSupportSlimming::filterInfo(FilterIDType filter) const {
-  const auto* f = find_filter(filter);
-  return f ? f->info : QString();
-}
+QString FilterSupportSlimming::filterName(FilterIDType filter) const { return slim::plugin::filter_name(filter); }
+QString FilterSupportSlimming::filterInfo(FilterIDType filter) const { return slim::plugin::filter_info(filter); }
 
 MeshFilterInterface::FilterClass FilterSupportSlimming::getClass(QAction* action) {
   return slim::plugin::filter_class<MeshFilterInterface>(filter_definitions().at(ID(action)).category);

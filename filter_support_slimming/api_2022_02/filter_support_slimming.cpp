@@ -21,15 +21,8 @@ std::pair<std::string, bool> FilterSupportSlimming::getMLVersion() const {
 
 QString FilterSupportSlimming::pluginName() const { return "FilterSupportSlimming"; }
 
-QString FilterSupportSlimming::filterName(ActionIDType filter) const {
-  const auto* f = find_filter(filter);
-  return f ? f->name : QString();
-}
-
-QString FilterSupportSlimming::filterInfo(ActionIDType filter) const {
-  const auto* f = find_filter(filter);
-  return f ? f->info : QString();
-}
+QString FilterSupportSlimming::filterName(ActionIDType filter) const { return slim::plugin::filter_name(filter); }
+QString FilterSupportSlimming::filterInfo(ActionIDType filter) const { return slim::plugin::filter_info(filter); }
 
 FilterPlugin::FilterClass FilterSupportSlimming::getClass(const QAction* action) const {
   return slim::plugin::filter_class<FilterPlugin>(filter_definitions().at(ID(action)).category);

@@ -1,8 +1,5 @@
 #include "core/arap.h"
 
-#include <dlfcn.h>
-
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
@@ -11,13 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/parallel_for.h"
-
-#ifdef SLIM_HAVE_CHOLMOD
-#include <Eigen/CholmodSupport>
-
-#include "core/supernodal_solve.h"
-#endif
+#include "core/sparse_cholesky.h"
+#include "core/union_find.h"
 
 namespace slim {
 
@@ -31,90 +23,6 @@ constexpr int kEnergyBlock = 4096;
 // Fewer free vertices than this are gathered on one thread: the work (~15 ns a vertex) is then
 // smaller than waking a thread team, and on a busy machine a team can wait a whole time slice.
 constexpr int kParallelRows = 4096;
-
-// OpenBLAS splits its kernels across threads, and the split changes the rounding: on this
-// machine CHOLMOD's supernodal factorization gave different bits with OPENBLAS_NUM_THREADS=1 and 2
-// (box grids of 2k to 50k vertices; the same count always repeats exactly). The optimizer's
-// stopping rule reads statistics that must repeat, so BLAS is held at ArapOptions::blas_threads
-// for the duration of each call and restored afterwards. One thread also keeps OpenBLAS's
-// workers from spinning on the second core after the factorization, which slowed the first
-// iterations' OpenMP loops by half (55k-vertex domain). The back-substitution uses no BLAS
-// (supernodal_solve.h); only CHOLMOD's own solve, when asked for, does.
-//
-// The functions are looked up at run time: they exist only when the BLAS behind CHOLMOD is
-// OpenBLAS (with any other BLAS this does nothing). A plugin's dependencies are loaded with
-// RTLD_LOCAL and are invisible to RTLD_DEFAULT, so the already-loaded library is asked too.
-struct OpenBlasThreads {
-  int (*get)() = nullptr;
-  void (*set)(int) = nullptr;
-};
-
-const OpenBlasThreads& openblas_threads() {
-  static const OpenBlasThreads api = [] {
-    OpenBlasThreads a;
-    std::vector<void*> scopes = {RTLD_DEFAULT};
-    for (const char* name : {"libopenblas.so.0", "libopenblas.so"})
-      if (void* h = dlopen(name, RTLD_LAZY | RTLD_NOLOAD)) scopes.push_back(h);  // never loads
-    for (void* scope : scopes) {
-      a.get = reinterpret_cast<int (*)()>(dlsym(scope, "openblas_get_num_threads"));
-      a.set = reinterpret_cast<void (*)(int)>(dlsym(scope, "openblas_set_num_threads"));
-      if (a.get && a.set) return a;
-    }
-    return OpenBlasThreads{};
-  }();
-  return api;
-}
-
-class BlasThreadsScope {
- public:
-  explicit BlasThreadsScope(int threads) {
-    const OpenBlasThreads& api = openblas_threads();
-    if (threads <= 0 || !api.set) return;
-    previous_ = api.get();
-    if (previous_ == threads) return;
-    set_ = api.set;
-    set_(threads);
-  }
-  ~BlasThreadsScope() {
-    if (set_) set_(previous_);
-  }
-  BlasThreadsScope(const BlasThreadsScope&) = delete;
-  BlasThreadsScope& operator=(const BlasThreadsScope&) = delete;
-
- private:
-  void (*set_)(int) = nullptr;
-  int previous_ = 0;
-};
-
-// Union-find over vertices, to find the connected components of the weighted edges.
-struct Components {
-  std::vector<int> parent;
-  explicit Components(int n) : parent(static_cast<size_t>(n)) {
-    std::iota(parent.begin(), parent.end(), 0);
-  }
-  int find(int v) {
-    while (parent[static_cast<size_t>(v)] != v) {
-      parent[static_cast<size_t>(v)] = parent[static_cast<size_t>(parent[static_cast<size_t>(v)])];
-      v = parent[static_cast<size_t>(v)];
-    }
-    return v;
-  }
-  // The smaller root wins, so every root is its component's lowest vertex index.
-  void join(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
-  }
-};
-
-#ifdef SLIM_HAVE_CHOLMOD
-// CHOLMOD's supernodal LL^T through Eigen, with the factor itself in reach: the back-substitution
-// runs on it directly (supernodal_solve.h says why).
-class CholmodSupernodal : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
- public:
-  bool view(SupernodalFactor& out) const { return supernodal_view(m_cholmodFactor, out); }
-};
-#endif
 
 }  // namespace
 
@@ -136,14 +44,8 @@ struct ArapSolver::Impl {
   mutable std::vector<Eigen::Matrix<double, 3, 4>> gradient;
 
   ArapOptions options;
-  std::string backend;
   int factorizations = 0;
-  std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>> ldlt;
-#ifdef SLIM_HAVE_CHOLMOD
-  std::unique_ptr<CholmodSupernodal> cholmod_super;
-  std::unique_ptr<SupernodalSolver> supernodal;  // solves on cholmod_super's factor
-  std::unique_ptr<Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower>> cholmod_simplicial;
-#endif
+  std::unique_ptr<SparseCholesky> cholesky;  // of K_ff; none when every vertex is held
 
   // Everything a constructor does: store and check, split, index, factor once, size the workspace.
   void setup(const TetMesh& mesh, const Eigen::VectorXd* weights, const std::vector<int>& pinned);
@@ -151,7 +53,6 @@ struct ArapSolver::Impl {
   void split_vertices(const std::vector<int>& pinned);
   void build_incidence();
   SparseMatrix free_matrix() const;
-  void factor(const SparseMatrix& K);
   void check_L(const std::vector<Eigen::Matrix3d>& L) const;
 };
 
@@ -196,7 +97,7 @@ void ArapSolver::Impl::split_vertices(const std::vector<int>& pinned) {
   }
   // Components of the edges that carry weight; a vertex on none of them is held (nothing in E
   // determines it), and every other component needs a held vertex or K is singular.
-  Components comp(nv);
+  UnionFind comp(nv);
   std::vector<char> used(static_cast<size_t>(nv), 0);
   for (int t = 0; t < nt; ++t) {
     if (!(w(t) > 0.0)) continue;
@@ -216,7 +117,7 @@ void ArapSolver::Impl::split_vertices(const std::vector<int>& pinned) {
           << " has no pinned vertex, so its position is undetermined; pin one of its vertices";
       throw std::invalid_argument(msg.str());
     }
-    held[static_cast<size_t>(v)] = 1;  // v is the component's lowest index (see Components)
+    held[static_cast<size_t>(v)] = 1;  // v is the component's lowest index (union_find.h)
   }
   free_index.assign(static_cast<size_t>(nv), -1);
   for (int v = 0; v < nv; ++v) {
@@ -274,69 +175,6 @@ SparseMatrix ArapSolver::Impl::free_matrix() const {
   return K;
 }
 
-namespace {
-template <class Solver>
-std::unique_ptr<Solver> factor_with(const SparseMatrix& K) {
-  auto s = std::make_unique<Solver>();
-  s->compute(K);
-  if (s->info() != Eigen::Success)
-    throw std::runtime_error(
-        "ArapSolver: the factorization of the global step failed (matrix not positive definite: "
-        "check for degenerate tets or weights)");
-  return s;
-}
-
-#ifdef SLIM_HAVE_CHOLMOD
-// CHOLMOD's default analysis orders with AMD and, when AMD's fill looks high, with METIS too, and
-// keeps the better. On our 3D domains METIS is always the better (bunny domain, 55k unknowns: 14.1M
-// nonzeros in L against AMD's 26.6M; the solve time follows), so asking for METIS alone saves the
-// AMD ordering, about a tenth of the setup. A CHOLMOD built without METIS fails that analysis;
-// the default one is used then.
-template <class Solver>
-std::unique_ptr<Solver> factor_with_metis(const SparseMatrix& K) {
-  auto s = std::make_unique<Solver>();
-  s->cholmod().nmethods = 1;
-  s->cholmod().method[0].ordering = CHOLMOD_METIS;
-  s->compute(K);
-  if (s->info() == Eigen::Success) return s;
-  return factor_with<Solver>(K);
-}
-#endif
-}  // namespace
-
-void ArapSolver::Impl::factor(const SparseMatrix& K) {
-  using B = ArapOptions::Backend;
-  B b = options.backend;
-#ifdef SLIM_HAVE_CHOLMOD
-  if (b == B::Auto) b = B::Cholmod;
-  const BlasThreadsScope blas(options.blas_threads);
-  // CHOLMOD's supernodal factorization opens OpenMP regions with a fixed team of
-  // CHOLMOD_OMP_NUM_THREADS (4 in Debian's build) for its copies and scatters, whatever the
-  // process's setting: on two cores that oversubscription spent a third of the setup in thread
-  // wake-ups (bunny domain, 55k unknowns: 1.45-1.63 s against 1.00 s serialized). The copies are
-  // memory-bound and gain nothing from threads.
-  const SerialOpenMPScope serial;
-  if (b == B::Cholmod) {
-    cholmod_super = factor_with_metis<CholmodSupernodal>(K);
-    backend = "CHOLMOD supernodal";
-    SupernodalFactor view;
-    if (options.own_supernodal_solve && cholmod_super->view(view)) supernodal = std::make_unique<SupernodalSolver>(view);
-  } else if (b == B::CholmodSimplicial) {
-    cholmod_simplicial = factor_with_metis<Eigen::CholmodSimplicialLLT<SparseMatrix, Eigen::Lower>>(K);
-    backend = "CHOLMOD simplicial";
-  }
-#else
-  if (b == B::Auto) b = B::EigenLDLT;
-  if (b != B::EigenLDLT)
-    throw std::invalid_argument("ArapSolver: CHOLMOD was not built in; use Backend::EigenLDLT or Auto");
-#endif
-  if (b == B::EigenLDLT) {
-    ldlt = factor_with<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>>(K);
-    backend = "Eigen SimplicialLDLT";
-  }
-  ++factorizations;
-}
-
 void ArapSolver::Impl::check_L(const std::vector<Eigen::Matrix3d>& L) const {
   if (static_cast<int>(L.size()) != nt) throw std::invalid_argument("ArapSolver: expected one L per tet");
 }
@@ -345,7 +183,14 @@ void ArapSolver::Impl::setup(const TetMesh& mesh, const Eigen::VectorXd* weights
   check_and_store(mesh, weights);
   split_vertices(pinned);
   build_incidence();
-  if (!free_vertices.empty()) factor(free_matrix());
+  if (!free_vertices.empty()) {
+    SparseCholeskyOptions o;
+    o.backend = options.backend;
+    o.blas_threads = options.blas_threads;
+    o.own_supernodal_solve = options.own_supernodal_solve;
+    cholesky = std::make_unique<SparseCholesky>(free_matrix(), o);
+    ++factorizations;
+  }
   gradient.assign(static_cast<size_t>(nt), Eigen::Matrix<double, 3, 4>::Zero());  // its pages, now
 }
 
@@ -411,21 +256,7 @@ Eigen::MatrixXd ArapSolver::back_substitute(const Eigen::MatrixXd& rhs) const {
     throw std::invalid_argument("ArapSolver: the right-hand side must be #free by 3");
   if (m.free_vertices.empty()) return Eigen::MatrixXd(0, 3);
   Eigen::MatrixXd x;
-  bool ok = true;
-#ifdef SLIM_HAVE_CHOLMOD
-  if (m.supernodal) {
-    x = m.supernodal->solve(rhs);  // no BLAS
-  } else if (m.cholmod_super) {
-    const BlasThreadsScope blas(m.options.blas_threads);
-    x = m.cholmod_super->solve(rhs);
-    ok = m.cholmod_super->info() == Eigen::Success;
-  } else if (m.cholmod_simplicial) {
-    x = m.cholmod_simplicial->solve(rhs);
-    ok = m.cholmod_simplicial->info() == Eigen::Success;
-  }
-#endif
-  if (m.ldlt) x = m.ldlt->solve(rhs);
-  if (!ok || !x.allFinite())
+  if (!m.cholesky->solve(rhs, x))
     throw std::runtime_error("ArapSolver: the global step produced non-finite positions (non-finite L?)");
   return x;
 }
@@ -468,16 +299,10 @@ const std::vector<int>& ArapSolver::free_vertices() const { return impl_->free_v
 const std::vector<int>& ArapSolver::held_vertices() const { return impl_->held_vertices; }
 const Eigen::VectorXd& ArapSolver::weights() const { return impl_->w; }
 std::string ArapSolver::backend_name() const {
-  return impl_->backend.empty() ? std::string("none (every vertex held)") : impl_->backend;
+  return impl_->cholesky ? impl_->cholesky->backend_name() : std::string("none (every vertex held)");
 }
 int ArapSolver::factorizations() const { return impl_->factorizations; }
 
-bool ArapSolver::cholmod_available() {
-#ifdef SLIM_HAVE_CHOLMOD
-  return true;
-#else
-  return false;
-#endif
-}
+bool ArapSolver::cholmod_available() { return SparseCholesky::cholmod_available(); }
 
 }  // namespace slim

@@ -41,6 +41,7 @@
 
 #include <Eigen/Core>
 
+#include "core/sparse_cholesky.h"
 #include "core/tet_mesh.h"
 
 namespace slim {
@@ -54,17 +55,14 @@ inline Eigen::Matrix3d edge_matrix(const Points& V, const Eigen::Matrix<int, 1, 
 }
 
 struct ArapOptions {
-  enum class Backend {
-    Auto,               // CHOLMOD supernodal when built with it, else EigenLDLT
-    Cholmod,            // CHOLMOD supernodal LL^T (BLAS-based: fastest on 3D domains), solved by
-                        // SupernodalSolver (supernodal_solve.h)
-    CholmodSimplicial,  // CHOLMOD simplicial LL^T (no BLAS)
-    EigenLDLT           // Eigen::SimplicialLDLT with AMD ordering (always available)
-  };
+  // The factorization's backend (sparse_cholesky.h): Auto (CHOLMOD supernodal when built with
+  // it, solved by SupernodalSolver; else Eigen's SimplicialLDLT), Cholmod, CholmodSimplicial or
+  // EigenLDLT.
+  using Backend = CholeskyBackend;
   Backend backend = Backend::Auto;  // a CHOLMOD backend without CHOLMOD built in throws
   // Threads OpenBLAS may use inside CHOLMOD's factorization (and CHOLMOD's own solve), set for
   // their duration and restored afterwards. 1 (default): results repeat bit for bit whatever the
-  // process's BLAS setting (see arap.cpp for the measurement). 0: leave that setting alone.
+  // process's BLAS setting (blas_threads.h says why). 0: leave that setting alone.
   int blas_threads = 1;
   // With the CHOLMOD supernodal backend: back-substitute with SupernodalSolver on CHOLMOD's
   // factor (faster for three right-hand sides, see supernodal_solve.h) rather than CHOLMOD's

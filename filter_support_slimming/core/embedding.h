@@ -5,7 +5,7 @@
 // embed_surface(surface, domain, options) -> Embedding
 //   surface  Surface{V #V by 3, F #F by 3}, mesh units (mm).
 //   domain   a VoxelDomain (cells give the candidate tets directly) or any TetMesh (a uniform
-//            grid of tet buckets finds them; used for the TetGen domain). It must enclose every
+//            grid of tet boxes finds them; used for the TetGen domain): tet_locator.h. It must enclose every
 //            surface vertex; otherwise std::invalid_argument names the first vertex outside.
 //
 // Embedding
@@ -39,6 +39,7 @@
 
 #include <Eigen/Core>
 
+#include "core/checked_surface.h"
 #include "core/surface.h"
 #include "core/tet_mesh.h"
 #include "core/voxel_domain.h"
@@ -70,6 +71,9 @@ struct Embedding {
 // Throws std::invalid_argument (check_surface, or a vertex or face outside the domain).
 Embedding embed_surface(const Surface& surface, const VoxelDomain& domain, const EmbeddingOptions& options = {});
 Embedding embed_surface(const Surface& surface, const TetMesh& domain, const EmbeddingOptions& options = {});
+// The same for a surface already checked.
+Embedding embed_surface(const CheckedSurface& surface, const VoxelDomain& domain, const EmbeddingOptions& options = {});
+Embedding embed_surface(const CheckedSurface& surface, const TetMesh& domain, const EmbeddingOptions& options = {});
 
 // surface_V = sum of bary * domain_V, #V by 3; resized as needed.
 void embedded_positions(const Embedding& embedding, const Points& domain_V, Points& surface_V);

@@ -1,10 +1,11 @@
 #include "core/min_rotation.h"
 
+#include "core/convex_hull.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -74,205 +75,13 @@ Eigen::Matrix3Xd nonzero_unit_columns(const Eigen::Matrix3Xd& normals) {
   return unit;
 }
 
-// Edges of the convex hull of m >= 4 distinct unit vectors (3 by m), each with the two vertices
-// facing it. Why: circles i and j can only meet at a feasible point if (i, j) is a hull edge. At
-// a feasible crossing p, the plane x·p = -tau has every normal on the side x·p >= -tau and n_i,
-// n_j on it, so it supports the hull along the edge (i, j). (The hull is the spherical Delaunay
-// triangulation of the cap centres; its edges are O(m), against O(m²) pairs.)
-//
-// Incremental construction in a fixed pseudo-random order; every point not yet added waits in
-// the outside set of one facet it sees (Quickhull), so the expected cost is O(m log m). Returns
-// false, and the caller falls back to all pairs, whenever an orientation test is too close to 0
-// to trust: near-duplicate normals, or four nearly co-circular ones.
-class SphereHullEdges {
- public:
-  explicit SphereHullEdges(const Eigen::Matrix3Xd& points)
-      : p_(points), next_outside_(static_cast<size_t>(points.cols()), -1),
-        holder_(static_cast<size_t>(points.cols()), -1), start_at_(static_cast<size_t>(points.cols()), -1) {}
-
-  struct Edge {
-    int i, j;  // the edge, i < j
-    int k, l;  // the third vertices of its two facets
-  };
-
-  bool build(std::vector<Edge>& edges) {
-    facets_.reserve(static_cast<size_t>(8 * p_.cols()));  // ~6 per point are ever made
-    if (!start_simplex()) return false;
-    for (int q : insertion_order())
-      if (!add_point(q)) return false;
-    edges.clear();
-    for (const Facet& f : facets_) {
-      if (!f.alive) continue;
-      for (int e = 0; e < 3; ++e) {
-        const int i = f.v[e], j = f.v[(e + 1) % 3];
-        if (i > j) continue;  // each edge once
-        const Facet& g = facets_[static_cast<size_t>(f.next[e])];
-        const int l = g.v[0] != i && g.v[0] != j ? g.v[0] : (g.v[1] != i && g.v[1] != j ? g.v[1] : g.v[2]);
-        edges.push_back({i, j, f.v[(e + 2) % 3], l});
-      }
-    }
-    return true;
-  }
-
- private:
-  // Heights are 6 x tetrahedron volumes of unit vectors, computed to within ~1e-16: a height
-  // beyond 1e-12 has a certain sign.
-  static constexpr double kTrusted = 1e-12;
-
-  struct Facet {
-    std::array<int, 3> v;      // counter-clockwise seen from outside
-    std::array<int, 3> next;   // neighbour across the edge v[e] -> v[e + 1]
-    Eigen::Vector3d normal;    // (v1 - v0) × (v2 - v0), outward
-    double offset;             // normal·v0
-    int outside = -1;          // first point of its outside set
-    int stamp = -1;            // 2 s: visible from the point added in step s; 2 s + 1: not visible
-    bool alive = true;
-  };
-
-  double height(const Facet& f, int q) const { return f.normal.dot(p_.col(q)) - f.offset; }
-
-  int add_facet(int a, int b, int c) {
-    Facet f;
-    f.v = {a, b, c};
-    f.next = {-1, -1, -1};
-    f.normal = (p_.col(b) - p_.col(a)).cross(p_.col(c) - p_.col(a));
-    f.offset = f.normal.dot(p_.col(a));
-    facets_.push_back(f);
-    return static_cast<int>(facets_.size()) - 1;
-  }
-
-  // Puts q in the outside set of the first listed facet it clearly sees; false when it sees none
-  // clearly (a unit vector is never inside the hull of others, so that means a degeneracy).
-  bool assign(int q, const std::vector<int>& candidates) {
-    for (int f : candidates) {
-      const double h = height(facets_[static_cast<size_t>(f)], q);
-      if (std::abs(h) <= kTrusted) return false;
-      if (h > 0.0) {
-        next_outside_[static_cast<size_t>(q)] = facets_[static_cast<size_t>(f)].outside;
-        facets_[static_cast<size_t>(f)].outside = q;
-        holder_[static_cast<size_t>(q)] = f;
-        return true;
-      }
-    }
-    return false;
-  }
-
-  bool start_simplex() {
-    const Eigen::Index m = p_.cols();
-    auto farthest = [&](auto&& measure) {
-      Eigen::Index best = 0;
-      double best_value = -1.0;
-      for (Eigen::Index i = 0; i < m; ++i) {
-        const double value = measure(p_.col(i));
-        if (value > best_value) best = i, best_value = value;
-      }
-      return std::make_pair(static_cast<int>(best), best_value);
-    };
-    const int a = 0;
-    const int b = farthest([&](const Eigen::Vector3d& x) { return (x - p_.col(a)).squaredNorm(); }).first;
-    const Eigen::Vector3d ab = p_.col(b) - p_.col(a);
-    const auto [c, area] = farthest([&](const Eigen::Vector3d& x) { return ab.cross(x - p_.col(a)).norm(); });
-    const Eigen::Vector3d normal = ab.cross(p_.col(c) - p_.col(a));
-    const auto [d, volume] = farthest([&](const Eigen::Vector3d& x) { return std::abs(normal.dot(x - p_.col(a))); });
-    if (area <= kTrusted || volume <= kTrusted) return false;  // all on one circle
-    // Outward facets of the tetrahedron a b c d.
-    const bool d_above_abc = normal.dot(p_.col(d) - p_.col(a)) > 0.0;
-    const std::array<std::array<int, 3>, 4> faces =
-        d_above_abc ? std::array<std::array<int, 3>, 4>{{{a, c, b}, {a, b, d}, {b, c, d}, {c, a, d}}}
-                    : std::array<std::array<int, 3>, 4>{{{a, b, c}, {a, d, b}, {b, d, c}, {c, d, a}}};
-    for (const auto& f : faces) add_facet(f[0], f[1], f[2]);
-    for (Facet& f : facets_)
-      for (int e = 0; e < 3; ++e)
-        for (int g = 0; g < 4; ++g)
-          for (int k = 0; k < 3; ++k)
-            if (facets_[static_cast<size_t>(g)].v[k] == f.v[(e + 1) % 3] &&
-                facets_[static_cast<size_t>(g)].v[(k + 1) % 3] == f.v[e])
-              f.next[e] = g;
-    simplex_ = {a, b, c, d};
-    const std::vector<int> all = {0, 1, 2, 3};
-    for (int q = 0; q < static_cast<int>(m); ++q)
-      if (q != a && q != b && q != c && q != d && !assign(q, all)) return false;
-    return true;
-  }
-
-  // Every point but the simplex, shuffled by a fixed linear congruential generator: the hull does
-  // not depend on the order, but the expected running time needs it to look random.
-  std::vector<int> insertion_order() const {
-    std::vector<int> order;
-    for (int q = 0; q < static_cast<int>(p_.cols()); ++q)
-      if (std::find(simplex_.begin(), simplex_.end(), q) == simplex_.end()) order.push_back(q);
-    std::uint64_t state = 0x9E3779B97F4A7C15ull;
-    for (size_t i = order.size(); i > 1; --i) {
-      state = state * 6364136223846793005ull + 1442695040888963407ull;
-      std::swap(order[i - 1], order[static_cast<size_t>((state >> 33) % i)]);
-    }
-    return order;
-  }
-
-  bool add_point(int q) {
-    ++step_;
-    // The facets q sees form a connected patch around the one holding q.
-    const int first = holder_[static_cast<size_t>(q)];
-    if (first < 0 || !facets_[static_cast<size_t>(first)].alive) return false;
-    std::vector<int>& visible = visible_;
-    visible.assign(1, first);
-    facets_[static_cast<size_t>(first)].stamp = 2 * step_;
-    for (size_t k = 0; k < visible.size(); ++k) {
-      for (int e = 0; e < 3; ++e) {
-        Facet& g = facets_[static_cast<size_t>(facets_[static_cast<size_t>(visible[k])].next[e])];
-        if (g.stamp == 2 * step_ || g.stamp == 2 * step_ + 1) continue;
-        const double h = height(g, q);
-        if (std::abs(h) <= kTrusted) return false;
-        g.stamp = 2 * step_ + (h > 0.0 ? 0 : 1);
-        if (h > 0.0) visible.push_back(facets_[static_cast<size_t>(visible[k])].next[e]);
-      }
-    }
-    // A cone of new facets from q over the horizon.
-    std::vector<int>& cone = cone_;
-    cone.clear();
-    for (int f : visible) {
-      for (int e = 0; e < 3; ++e) {
-        const int g = facets_[static_cast<size_t>(f)].next[e];
-        if (facets_[static_cast<size_t>(g)].stamp != 2 * step_ + 1) continue;
-        const int a = facets_[static_cast<size_t>(f)].v[e], b = facets_[static_cast<size_t>(f)].v[(e + 1) % 3];
-        if (start_at_[static_cast<size_t>(a)] >= 0) return false;  // horizon not a simple loop
-        const int n = add_facet(a, b, q);
-        cone.push_back(n);
-        start_at_[static_cast<size_t>(a)] = n;
-        facets_[static_cast<size_t>(n)].next[0] = g;
-        Facet& outer = facets_[static_cast<size_t>(g)];
-        for (int k = 0; k < 3; ++k)
-          if (outer.v[k] == b && outer.v[(k + 1) % 3] == a) outer.next[k] = n;
-      }
-    }
-    for (int n : cone) {
-      const int b = facets_[static_cast<size_t>(n)].v[1];
-      const int after = start_at_[static_cast<size_t>(b)];
-      if (after < 0) return false;
-      facets_[static_cast<size_t>(n)].next[1] = after;
-      facets_[static_cast<size_t>(after)].next[2] = n;
-    }
-    for (int n : cone) start_at_[static_cast<size_t>(facets_[static_cast<size_t>(n)].v[0])] = -1;
-    // The points waiting on the removed facets move to new facets they see.
-    for (int f : visible) {
-      facets_[static_cast<size_t>(f)].alive = false;
-      for (int r = facets_[static_cast<size_t>(f)].outside, after; r >= 0; r = after) {
-        after = next_outside_[static_cast<size_t>(r)];
-        if (r != q && !assign(r, cone)) return false;
-      }
-    }
-    return true;
-  }
-
-  const Eigen::Matrix3Xd& p_;
-  std::vector<Facet> facets_;
-  std::vector<int> next_outside_;  // per point: the next one in the same outside set
-  std::vector<int> holder_;        // per point: the facet whose outside set holds it
-  std::vector<int> start_at_;      // per vertex: the new cone facet whose horizon edge starts there
-  std::array<int, 4> simplex_{};
-  int step_ = 0;
-  std::vector<int> visible_, cone_;  // scratch for add_point, kept to reuse their memory
-};
+// Why only hull edges can cross at a feasible point: at a feasible crossing p of circles i and j,
+// the plane x·p = -tau has every normal on the side x·p >= -tau and n_i, n_j on it, so it supports
+// the hull of the normals along the edge (i, j). (The hull is the spherical Delaunay triangulation
+// of the cap centres; its edges are O(m), against O(m²) pairs.) Heights in the strict hull are
+// 6 x tetrahedron volumes of unit vectors, computed to within ~1e-16: beyond this their sign is
+// certain; closer, the hull gives up and every pair is tried instead.
+constexpr double kTrustedHullTest = 1e-12;
 
 // Nearest point of H = { p : n_i·p >= -tau } to d, by enumerating every point that can be it.
 class NearestFeasiblePoint {
@@ -458,7 +267,7 @@ class NearestFeasiblePoint {
     if (minus) keep(p0 - hu);
   }
 
-  // With many normals only the crossings of hull edges (see SphereHullEdges).
+  // With many normals only the crossings of hull edges (see kTrustedHullTest).
   // False when the hull cannot be trusted; nothing has been offered then.
   bool offer_hull_crossings() {
     // Exact duplicates are one constraint, and would make the hull degenerate.
@@ -470,8 +279,12 @@ class NearestFeasiblePoint {
     const Eigen::Matrix3Xd distinct =
         Eigen::Map<const Eigen::Matrix3Xd>(sorted.front().data(), 3, static_cast<Eigen::Index>(sorted.size()));
 
-    std::vector<SphereHullEdges::Edge> edges;
-    if (!SphereHullEdges(distinct).build(edges)) return false;
+    ConvexHullOptions strict;
+    strict.eps = kTrustedHullTest;
+    strict.strict = true;
+    ConvexHull hull;
+    if (!convex_hull(Points(distinct.transpose()), strict, hull)) return false;
+    const std::vector<HullEdge> edges = hull_edges(hull);
     // A crossing of edge (i, j) can only be feasible if the two vertices k and l facing the edge
     // leave it alone (and then it nearly always is: it lies on the Voronoi edge of i and j). That
     // O(1) test rejects almost every infeasible candidate before the full O(n) check.

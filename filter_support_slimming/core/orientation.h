@@ -53,6 +53,7 @@
 
 #include <Eigen/Core>
 
+#include "core/checked_surface.h"
 #include "core/overhang.h"
 #include "core/surface.h"
 
@@ -102,6 +103,8 @@ struct OrientationResult {
 };
 
 OrientationResult optimize_orientation(const Surface& surface, const OrientationOptions& options = {});
+// The same for a surface already checked.
+OrientationResult optimize_orientation(const CheckedSurface& surface, const OrientationOptions& options = {});
 
 // The score of one print direction (any non-zero vector), computed as the search's final step
 // does. Same errors as optimize_orientation.

@@ -23,7 +23,12 @@ Eigen::Vector3d unit_print_direction(const Eigen::Vector3d& d) {
 
 OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options) {
   if (s.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: there is nothing to analyse");
-  check_surface(s);
+  return analyse_overhang(CheckedSurface(s), options);
+}
+
+OverhangReport analyse_overhang(const CheckedSurface& checked, const OverhangOptions& options) {
+  const Surface& s = checked.get();
+  if (s.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: there is nothing to analyse");
   const Eigen::Vector3d d = unit_print_direction(options.print_direction);
   const double tau = self_supporting_tau(options.alpha_max_deg);
 
@@ -37,26 +42,20 @@ OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options
   r.risky.assign(static_cast<size_t>(s.F.rows()), false);
   r.on_plate.assign(static_cast<size_t>(s.F.rows()), false);
   r.total_area = area.sum();
-  const bool plate_rule = options.plate_tolerance >= 0.0;
   for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
     const auto fi = static_cast<size_t>(f);
-    if (plate_rule) {
-      bool resting = true;
-      for (int k = 0; k < 3; ++k) resting = resting && height(s.F(f, k)) - r.plate_height <= options.plate_tolerance;
-      if (resting) {
-        r.on_plate[fi] = true;
-        r.quality(f) = 1.0;  // carried by the plate: reads as safe on the colour ramp
-        ++r.plate_count;
-        continue;
-      }
-    }
-    if (r.quality(f) < 0.0) {
+    const double h0 = height(s.F(f, 0)), h1 = height(s.F(f, 1)), h2 = height(s.F(f, 2));
+    const FaceSupport support = face_support(h0, h1, h2, r.plate_height, options.plate_tolerance, r.quality(f));
+    if (support == FaceSupport::Plate) {
+      r.on_plate[fi] = true;
+      r.quality(f) = 1.0;  // carried by the plate: reads as safe on the colour ramp
+      ++r.plate_count;
+    } else if (support == FaceSupport::Risky) {
       r.risky[fi] = true;
       ++r.risky_count;
       r.risky_area += area(f);
       r.risky_deficit -= area(f) * r.quality(f);
-      const double above_plate = (height(s.F(f, 0)) + height(s.F(f, 1)) + height(s.F(f, 2))) / 3.0 - r.plate_height;
-      r.shadow_volume += area(f) * std::max(0.0, -n.row(f).dot(d)) * above_plate;
+      r.shadow_volume += face_shadow(area(f), n.row(f).dot(d), (h0 + h1 + h2) / 3.0 - r.plate_height);
     }
   }
   return r;

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "core/checked_surface.h"
 #include "core/surface.h"
 
 namespace slim {
@@ -43,6 +44,26 @@ struct OverhangReport {
   double risky_share() const { return total_area > 0.0 ? risky_area / total_area : 0.0; }
 };
 
+// The rule for one face, the one place it is written (analyse_overhang and the orientation
+// search's exact score both apply it):
+//   h0, h1, h2  its vertices' heights along d (mm);  plate  the lowest vertex's height (mm);
+//   tolerance   the plate tolerance (mm; < 0 disables the plate rule);
+//   quality     n·d + tau, its unit normal n, tau = sin(alpha_max).
+// Plate: all three vertices within tolerance of the plate. Risky: not on the plate, and
+// quality < 0.
+enum class FaceSupport { Plate, Safe, Risky };
+inline FaceSupport face_support(double h0, double h1, double h2, double plate, double tolerance, double quality) {
+  if (tolerance >= 0.0 && h0 - plate <= tolerance && h1 - plate <= tolerance && h2 - plate <= tolerance)
+    return FaceSupport::Plate;
+  return quality < 0.0 ? FaceSupport::Risky : FaceSupport::Safe;
+}
+
+// A risky face's share of the shadow volume: area (mm²) x its footprint -(n·d) x the height of its
+// centroid above the plate (mm), in mm³.
+inline double face_shadow(double area, double n_dot_d, double centroid_above_plate) {
+  return area * (n_dot_d < 0.0 ? -n_dot_d : 0.0) * centroid_above_plate;
+}
+
 // tau = sin(alpha_max); throws std::invalid_argument unless 0 <= alpha_max_deg < 90.
 double self_supporting_tau(double alpha_max_deg);
 
@@ -52,5 +73,7 @@ Eigen::Vector3d unit_print_direction(const Eigen::Vector3d& d);
 // Classifies every face. Throws std::invalid_argument (readable message) for a surface with no
 // faces, bad indices, non-finite coordinates, or bad options.
 OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options = {});
+// The same for a surface already checked (the optimizer measures every iterate this way).
+OverhangReport analyse_overhang(const CheckedSurface& s, const OverhangOptions& options = {});
 
 }  // namespace slim

@@ -17,14 +17,6 @@ Eigen::Vector3d closest_on_segment(const Eigen::Vector3d& p, const Eigen::Vector
   return a + std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) * ab;
 }
 
-// The cell holding offset x (in cells) along an axis of `size` cells, clamped to the grid; NaN
-// (from an infinite extent) goes to cell 0, and nothing is cast out of int's range.
-int clamped_cell(double x, int size) {
-  if (!(x >= 0.0)) return 0;
-  if (x >= static_cast<double>(size - 1)) return size - 1;
-  return static_cast<int>(x);
-}
-
 }  // namespace
 
 OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& region) {
@@ -57,74 +49,46 @@ OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& re
   }
   if (boundary.empty()) return;
 
-  // The grid: about two cells per segment, each segment listed in the cells its bounding box
+  // The grid: about two cubic cells per segment, each segment listed in the cells its bounding box
   // overlaps. Should long segments make that list too long, one cell holds them all (a linear
   // scan: still exact, only slower).
-  const Eigen::Index n = a_.rows();
-  const Eigen::RowVector3d lo = a_.colwise().minCoeff().cwiseMin(b_.colwise().minCoeff());
-  const Eigen::RowVector3d hi = a_.colwise().maxCoeff().cwiseMax(b_.colwise().maxCoeff());
+  const int n = static_cast<int>(a_.rows());
+  const Eigen::Vector3d lo = a_.colwise().minCoeff().cwiseMin(b_.colwise().minCoeff()).transpose();
+  const Eigen::Vector3d hi = a_.colwise().maxCoeff().cwiseMax(b_.colwise().maxCoeff()).transpose();
   const double extent = (hi - lo).maxCoeff();
   const int per_side = std::clamp(static_cast<int>(std::cbrt(2.0 * static_cast<double>(n))), 1, 128);
-  origin_ = lo.transpose();
-  cell_ = extent > 0.0 && std::isfinite(extent) ? extent / per_side : 1.0;
-  for (int k = 0; k < 3; ++k) dims_(k) = clamped_cell((hi(k) - lo(k)) / cell_, per_side) + 1;
-  auto cell_range = [&](Eigen::Index i, Eigen::Vector3i& from, Eigen::Vector3i& to) {
-    for (int k = 0; k < 3; ++k) {
-      const double smin = std::min(a_(i, k), b_(i, k)) - origin_(k), smax = std::max(a_(i, k), b_(i, k)) - origin_(k);
-      from(k) = clamped_cell(smin / cell_, dims_(k));
-      to(k) = clamped_cell(smax / cell_, dims_(k));
-    }
+  const double cell = extent > 0.0 && std::isfinite(extent) ? extent / per_side : 1.0;
+  const Eigen::Vector3d cells = Eigen::Vector3d::Constant(cell);
+  const UniformGrid sizing(lo, cells, Eigen::Vector3i::Constant(per_side));
+  const Eigen::Vector3i dims = sizing.cell_of(hi) + Eigen::Vector3i::Ones();
+  auto box_of = [&](int i, Eigen::Vector3d& from, Eigen::Vector3d& to) {
+    from = a_.row(i).cwiseMin(b_.row(i)).transpose();
+    to = a_.row(i).cwiseMax(b_.row(i)).transpose();
   };
-  double listed = 0.0;
-  Eigen::Vector3i from, to;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    cell_range(i, from, to);
-    listed += static_cast<double>(to(0) - from(0) + 1) * (to(1) - from(1) + 1) * (to(2) - from(2) + 1);
-  }
-  if (listed > 32.0 * static_cast<double>(n) + 1e6) dims_.setOnes();
-  const size_t cells = static_cast<size_t>(dims_(0)) * static_cast<size_t>(dims_(1)) * static_cast<size_t>(dims_(2));
-  cell_start_.assign(cells + 1, 0);
-  for (int pass = 0; pass < 2; ++pass) {
-    std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      cell_range(i, from, to);
-      for (int z = from(2); z <= to(2); ++z)
-        for (int y = from(1); y <= to(1); ++y)
-          for (int x = from(0); x <= to(0); ++x) {
-            const size_t c = cell_index(x, y, z);
-            if (pass == 0) ++cell_start_[c + 1];
-            else cell_segments_[static_cast<size_t>(fill[c]++)] = static_cast<int>(i);
-          }
-    }
-    if (pass == 0) {
-      for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
-      cell_segments_.resize(static_cast<size_t>(cell_start_.back()));
-    }
-  }
+  grid_ = UniformGrid(lo, cells, dims);
+  if (grid_.entries(n, box_of) > 32.0 * n + 1e6) grid_ = UniformGrid(lo, cells, Eigen::Vector3i::Ones());
+  grid_.fill(n, box_of);
 }
 
 double OverhangBoundary::nearest(const Eigen::Vector3d& p, Eigen::Vector3d& closest) const {
   double best = HUGE_VAL;
   int best_segment = -1;
   if (a_.rows() == 0) return best;
-  Eigen::Vector3i centre;
-  for (int k = 0; k < 3; ++k)
-    centre(k) = clamped_cell((p(k) - origin_(k)) / cell_, dims_(k));
-  const int max_shell = dims_.maxCoeff();
+  const Eigen::Vector3i centre = grid_.cell_of(p), dims = grid_.dims();
+  const Eigen::Vector3d origin = grid_.origin(), cell = grid_.cell_size();
+  const int max_shell = dims.maxCoeff();
   for (int shell = 0; shell <= max_shell; ++shell) {
     Eigen::Vector3i from, to;
     for (int k = 0; k < 3; ++k) {
       from(k) = std::max(centre(k) - shell, 0);
-      to(k) = std::min(centre(k) + shell, dims_(k) - 1);
+      to(k) = std::min(centre(k) + shell, dims(k) - 1);
     }
     for (int z = from(2); z <= to(2); ++z)
       for (int y = from(1); y <= to(1); ++y)
         for (int x = from(0); x <= to(0); ++x) {
           const int ring = std::max({std::abs(x - centre(0)), std::abs(y - centre(1)), std::abs(z - centre(2))});
           if (ring != shell) continue;  // visited in an earlier shell
-          const size_t c = cell_index(x, y, z);
-          for (int s = cell_start_[c]; s < cell_start_[c + 1]; ++s) {
-            const int i = cell_segments_[static_cast<size_t>(s)];
+          for (int i : grid_.items(grid_.index(x, y, z))) {
             const Eigen::Vector3d q = closest_on_segment(p, a_.row(i).transpose(), b_.row(i).transpose());
             const double dist = (q - p).norm();
             if (dist < best || (dist == best && i < best_segment)) {
@@ -138,8 +102,8 @@ double OverhangBoundary::nearest(const Eigen::Vector3d& p, Eigen::Vector3d& clos
     // the nearest of the block's faces that have cells beyond them.
     double unseen = HUGE_VAL;
     for (int k = 0; k < 3; ++k) {
-      if (from(k) > 0) unseen = std::min(unseen, std::max(0.0, p(k) - (origin_(k) + from(k) * cell_)));
-      if (to(k) < dims_(k) - 1) unseen = std::min(unseen, std::max(0.0, origin_(k) + (to(k) + 1) * cell_ - p(k)));
+      if (from(k) > 0) unseen = std::min(unseen, std::max(0.0, p(k) - (origin(k) + from(k) * cell(k))));
+      if (to(k) < dims(k) - 1) unseen = std::min(unseen, std::max(0.0, origin(k) + (to(k) + 1) * cell(k) - p(k)));
     }
     if (best < unseen) break;
   }

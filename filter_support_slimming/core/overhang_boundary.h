@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 
 #include "core/surface.h"
+#include "core/uniform_grid.h"
 
 namespace slim {
 
@@ -46,16 +47,9 @@ class OverhangBoundary {
 
  private:
   Points a_, b_;  // segment end points, one row each
-  // A uniform grid over the segments' bounding box: each cell lists the segments whose bounding
-  // box overlaps it (CSR), so a query visits shells of cells outwards from its own.
-  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
-  double cell_ = 1.0;
-  Eigen::Vector3i dims_ = Eigen::Vector3i::Ones();
-  std::vector<int> cell_start_, cell_segments_;
-  size_t cell_index(int x, int y, int z) const {
-    return (static_cast<size_t>(z) * static_cast<size_t>(dims_(1)) + static_cast<size_t>(y)) * static_cast<size_t>(dims_(0)) +
-           static_cast<size_t>(x);
-  }
+  // Each cell lists the segments whose bounding box overlaps it, so a query visits shells of
+  // cells outwards from its own.
+  UniformGrid grid_;
 };
 
 }  // namespace slim

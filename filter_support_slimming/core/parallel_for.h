@@ -7,6 +7,10 @@
 // an ordinary exception, and which one does not depend on the thread count. The other iterations
 // still run (OpenMP has no portable early exit); their exceptions are dropped.
 //
+// FirstFailure: that carrier on its own, for loops that need more than parallel_for offers
+// (per-thread scratch, their own schedule). record(i, error) from inside the region (it never
+// throws), rethrow() after it: the exception of the lowest i recorded.
+//
 // ThreadScope(threads): the OpenMP thread count for the lifetime of the object (threads > 0), the
 // previous one restored after; threads <= 0 keeps the runtime's default.
 //
@@ -14,7 +18,10 @@
 // 0), so a library's regions with a fixed team size run on the calling thread; restored after.
 #pragma once
 
+#include <climits>
 #include <exception>
+#include <stdexcept>
+#include <utility>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -62,23 +69,45 @@ class SerialOpenMPScope : OpenMPSettingScope<omp_setting::active_levels, omp_set
   SerialOpenMPScope() : OpenMPSettingScope(true, 0) {}
 };
 
+class FirstFailure {
+ public:
+  void record(long long i, std::exception_ptr error) noexcept {
+#pragma omp critical(slim_first_failure)
+    if (i < index_) {
+      index_ = i;
+      error_ = std::move(error);
+    }
+  }
+  // The exception as std::invalid_argument(message); if even that cannot be made (no memory),
+  // the allocation failure itself.
+  void record_invalid_argument(long long i, const char* message) noexcept {
+    try {
+      record(i, std::make_exception_ptr(std::invalid_argument(message)));
+    } catch (...) {
+      record(i, std::current_exception());
+    }
+  }
+  void rethrow() const {
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  long long index_ = LLONG_MAX;
+  std::exception_ptr error_;
+};
+
 template <class Body>
 void parallel_for(int n, Body&& body) {
-  int first_failure = n;
-  std::exception_ptr error;
+  FirstFailure failure;
 #pragma omp parallel for schedule(dynamic, 256)
   for (int i = 0; i < n; ++i) {
     try {
       body(i);
     } catch (...) {
-#pragma omp critical(slim_parallel_for_error)
-      if (i < first_failure) {
-        first_failure = i;
-        error = std::current_exception();
-      }
+      failure.record(i, std::current_exception());
     }
   }
-  if (error) std::rethrow_exception(error);
+  failure.rethrow();
 }
 
 }  // namespace slim

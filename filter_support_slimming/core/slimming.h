@@ -4,13 +4,20 @@
 // Out: the deformed Surface (same #V, same F: the topology never changes), in the input's frame,
 //      with per-iteration statistics and the overhang report of the result.
 //
+// slim_supports is the driver: it checks the input once, builds the domain (embedded_domain.h)
+// and a SupportSlimmer (slimmer.h: the precomputation; step() is one iteration), runs the
+// iterations under the stopping rule below and keeps the best iterate (result_choice.h).
+//
 // Each iteration:
 //   local step   for every tet t:  M_t = polar(V_t^cur (V_t^0)^-1)  (nearest rotation, det +1).
 //                A tet holding risky faces turns their rest normals by M_t, asks min_rotation for
 //                the smallest R_t that makes them all self-supporting (K-means proxies when no
-//                exact answer exists) and sets L_t = R_t M_t; every other tet keeps L_t = M_t.
+//                exact answer exists) and sets L_t = R_t M_t; every other tet keeps L_t = M_t
+//                (local_step.h; the coherent method blends neighbours' R_t, coherence.h; rigid
+//                features share one L, rigid_features.h).
 //   global step  V = argmin sum_t w_t ||V_t - L_t V_t^0||_F^2 with the plate vertices held
 //                (arap.h: factored once, back-substituted every iteration).
+//   guards       the plate, the deviation budget and the inversion guard (step_guards.h).
 // The surface follows the domain through fixed barycentric coordinates (embedding.h).
 //
 // Stopping: the first of  max_iterations;  the overhang deficit (overhang.h: risky area weighted
@@ -37,7 +44,46 @@ namespace slim {
 
 enum class SlimmingMethod {
   Paper,    // the paper as written: per-tet minimal rotations, volume weights
-  Coherent  // the default: see slimming.cpp for what it adds, each part an option below
+  Coherent  // the default: the paper with the parts of CoherenceOptions below
+};
+
+// What the coherent method adds to the paper, part by part; each was measured on the bunny, the
+// T, the mushroom and the arch with bench/slimming_curve (docs/algorithm.md has the tables). Every
+// part has a value that turns it off; SlimmingMethod::Paper turns them all off (none()), whatever
+// is set here.
+struct CoherenceOptions {
+  // The global step's weights. They are fixed before its one factorization, so they read the
+  // input's risky faces.
+  double interior_weight = 0.1;  // factor on tets that hold no surface face: the surface leads and
+                                 // the interior follows instead of holding it back; 1 = off
+  double risky_boost = 10.0;     // factor on tets that hold faces risky at the start: their
+                                 // rotations are carried out instead of averaged away; 1 = off
+  // The local step (coherence.h).
+  double smoothing = 0.5;        // share of the face-neighbouring risky tets' mean (area-weighted
+                                 // quaternion average) in a risky tet's extra rotation; 0 = off
+  double propagation = 0.5;      // share of its risky neighbours' extra rotation a safe tet takes,
+                                 // so a region turns as a body, not as a skin; 0 = off
+  // Edge turns: a tet holding a flat overhang (a risky face within flat_overhang_deg of straight
+  // down) turns about the horizontal axis that tilts it towards the nearest edge of the input's
+  // flat-overhang region, when that costs at most edge_turn_slack_deg more than its minimal turn;
+  // straight-down faces break their tie that way too. A flat overhang then grows a bevel or keel
+  // along its edges, which a small budget can reach. 10 degrees takes in the mushroom's cap (8);
+  // the slack must exceed the 16 degrees by which turning its inner part towards the stem costs
+  // more than turning outwards.
+  bool edge_turns = true;
+  double flat_overhang_deg = 10.0;    // [0, 90)
+  double edge_turn_slack_deg = 20.0;  // >= 0
+  // The inversion guard (step_guards.h): true rolls the vertices of the tets a step would invert
+  // back and goes on; false cuts the whole step back to the largest valid fraction and stops.
+  bool local_inversion_guard = true;
+
+  static CoherenceOptions none() {
+    CoherenceOptions o;
+    o.interior_weight = o.risky_boost = 1.0;
+    o.smoothing = o.propagation = 0.0;
+    o.edge_turns = o.local_inversion_guard = false;
+    return o;
+  }
 };
 
 enum class DomainKind { Voxel, TetGen };
@@ -59,6 +105,7 @@ struct SlimmingOptions {
   double margin_deg = 1.0;           // solve for alpha_max - margin, measure at alpha_max
   double max_step_deg = 10.0;        // cap on each tet's extra rotation per iteration
   int max_k = 8;                     // K-means proxies: the largest k tried
+  CoherenceOptions coherence;        // the coherent method's parts (ignored by Paper)
   // --- feature preservation (§IV-B) -------------------------------------------------------------
   // Per input face: true = part of a rigid feature. Each connected component of the marked faces
   // is one feature that moves as a single rigid body. Empty: no features.
@@ -99,6 +146,15 @@ struct IterationStats {
   int risky_tets = 0;
 };
 
+struct SlimmingStageSeconds {  // wall time per stage, summed over iterations
+  double domain = 0.0;          // voxel or TetGen domain
+  double embedding = 0.0;       // barycentric coordinates and clipped face pieces
+  double factorization = 0.0;   // the global step's assembly and its one factorization
+  double local = 0.0;           // polar decompositions, minimal rotations, coherence
+  double global = 0.0;          // right-hand sides and back-substitutions
+  double measure = 0.0;         // the step guards, write-back to the surface and the statistics
+};
+
 struct SlimmingResult {
   Surface surface;                    // the deformed mesh, same topology as the input
   OverhangReport before, after;       // measured at alpha_max
@@ -114,14 +170,8 @@ struct SlimmingResult {
   int domain_vertices = 0, domain_tets = 0;
   std::string solver_backend;
   double seconds = 0.0;               // wall time of the whole run
-  struct StageSeconds {               // wall time per stage, summed over iterations
-    double domain = 0.0;              // voxel or TetGen domain
-    double embedding = 0.0;           // barycentric coordinates and clipped face pieces
-    double factorization = 0.0;       // the global step's assembly and its one factorization
-    double local = 0.0;               // polar decompositions, minimal rotations, coherence
-    double global = 0.0;              // right-hand sides and back-substitutions
-    double measure = 0.0;             // write-back to the surface and the statistics
-  } stage_seconds;
+  using StageSeconds = SlimmingStageSeconds;
+  StageSeconds stage_seconds;
 };
 
 struct Cancelled : std::exception {

@@ -186,17 +186,29 @@ struct SupernodalSolver::Plan {
   Backward backward = backward_range_baseline;
 };
 
-SupernodalSolver::SupernodalSolver(const SupernodalFactor& f, SupernodalKernels kernels)
-    : f_(f), plan_(std::make_unique<Plan>()) {
+namespace {
+
+// The supernodal elimination tree, checked to be in postorder: a supernode's parent owns its first
+// row below its columns, and a subtree is the contiguous range [first, root].
+struct EliminationTree {
+  std::vector<double> work, subtree;  // stored entries of each supernode, and of its subtree
+  std::vector<int> first;             // the first supernode of each subtree
+  std::vector<std::vector<int>> children;
+  std::vector<int> roots;
+  int max_rows = 0;
+};
+
+// Checks the view's structure and builds the tree (throws std::invalid_argument).
+EliminationTree elimination_tree(const SupernodalFactor& f) {
   const int n = f.n, ns = f.supernodes;
   if (n < 0 || ns < 0 || (ns > 0 && (!f.first_column || !f.row_start || !f.value_start || !f.rows || !f.values)) ||
       (n > 0 && !f.permutation))
     bad_factor("missing arrays");
   if (ns == 0 ? n != 0 : (f.first_column[0] != 0 || f.first_column[ns] != n || f.row_start[0] != 0))
     bad_factor("the supernodes do not cover the columns");
-  Plan& p = *plan_;
-  std::vector<int> column_owner(static_cast<size_t>(n)), parent(static_cast<size_t>(ns), -1);
-  std::vector<double> work(static_cast<size_t>(ns));
+  EliminationTree tree;
+  std::vector<int> column_owner(static_cast<size_t>(n));
+  tree.work.resize(static_cast<size_t>(ns));
   for (int s = 0; s < ns; ++s) {
     const int c0 = f.first_column[s], nc = f.first_column[s + 1] - c0, nr = f.row_start[s + 1] - f.row_start[s];
     if (nc <= 0 || nr < nc) bad_factor("supernode " + std::to_string(s) + " has no columns or too few rows");
@@ -205,67 +217,78 @@ SupernodalSolver::SupernodalSolver(const SupernodalFactor& f, SupernodalKernels 
       if (i < nc ? rows[i] != c0 + i : (rows[i] <= rows[i - 1] || rows[i] >= n))
         bad_factor("supernode " + std::to_string(s) + " has rows out of order");
     for (int c = c0; c < c0 + nc; ++c) column_owner[static_cast<size_t>(c)] = s;
-    work[static_cast<size_t>(s)] = static_cast<double>(nc) * nr;
-    p.max_rows = std::max(p.max_rows, nr);
+    tree.work[static_cast<size_t>(s)] = static_cast<double>(nc) * nr;
+    tree.max_rows = std::max(tree.max_rows, nr);
   }
   std::vector<int> seen(static_cast<size_t>(n), 0);
   for (int k = 0; k < n; ++k) {
     const int r = f.permutation[k];
     if (r < 0 || r >= n || seen[static_cast<size_t>(r)]++) bad_factor("the permutation repeats or leaves a row");
   }
-
-  // The supernodal elimination tree: a supernode's parent owns its first row below its columns.
-  std::vector<double> subtree(work);
-  std::vector<int> first(static_cast<size_t>(ns));
-  std::vector<std::vector<int>> children(static_cast<size_t>(ns));
-  std::vector<int> candidates;  // subtree roots not yet assigned
+  tree.subtree = tree.work;
+  tree.first.resize(static_cast<size_t>(ns));
+  tree.children.resize(static_cast<size_t>(ns));
   for (int s = 0; s < ns; ++s) {
     const int nc = f.first_column[s + 1] - f.first_column[s], nr = f.row_start[s + 1] - f.row_start[s];
-    first[static_cast<size_t>(s)] = children[static_cast<size_t>(s)].empty() ? s : first[static_cast<size_t>(children[static_cast<size_t>(s)].front())];
+    const std::vector<int>& kids = tree.children[static_cast<size_t>(s)];
+    tree.first[static_cast<size_t>(s)] = kids.empty() ? s : tree.first[static_cast<size_t>(kids.front())];
     if (nr == nc) {
-      candidates.push_back(s);
+      tree.roots.push_back(s);
       continue;
     }
     const int up = column_owner[static_cast<size_t>(f.rows[f.row_start[s] + nc])];
     if (up <= s) bad_factor("supernode " + std::to_string(s) + " comes after its parent");
-    parent[static_cast<size_t>(s)] = up;
-    subtree[static_cast<size_t>(up)] += subtree[static_cast<size_t>(s)];
-    children[static_cast<size_t>(up)].push_back(s);
+    tree.subtree[static_cast<size_t>(up)] += tree.subtree[static_cast<size_t>(s)];
+    tree.children[static_cast<size_t>(up)].push_back(s);
   }
-  // Postorder: a subtree is the contiguous range [first, root]. Checked, as the halves rely on it.
   for (int s = 0; s < ns; ++s) {
-    const std::vector<int>& kids = children[static_cast<size_t>(s)];
+    const std::vector<int>& kids = tree.children[static_cast<size_t>(s)];
     for (size_t c = 0; c < kids.size(); ++c)
-      if (c + 1 == kids.size() ? kids[c] != s - 1 : first[static_cast<size_t>(kids[c + 1])] != kids[c] + 1)
+      if (c + 1 == kids.size() ? kids[c] != s - 1 : tree.first[static_cast<size_t>(kids[c + 1])] != kids[c] + 1)
         bad_factor("the supernodes are not in postorder");
   }
+  return tree;
+}
 
-  // Which subtrees make the two halves: the candidates start as the roots, and the heaviest one
-  // is split again and again (its root goes to the shared part, done after the halves, its
-  // children become candidates). Each state deals the candidates to the lighter half, heaviest
-  // first, and the state with the shortest estimated time, shared + heavier half, is kept.
-  auto deal = [&](std::vector<int> subtrees, std::vector<std::pair<int, int>> (&halves)[2], double (&load)[2]) {
-    std::sort(subtrees.begin(), subtrees.end(), [&](int a, int b) {
-      return subtree[static_cast<size_t>(a)] != subtree[static_cast<size_t>(b)] ? subtree[static_cast<size_t>(a)] > subtree[static_cast<size_t>(b)] : a < b;
-    });
-    for (int h = 0; h < 2; ++h) {
-      halves[h].clear();
-      load[h] = 0.0;
-    }
-    for (int c : subtrees) {
-      const int h = load[1] < load[0] ? 1 : 0;
-      halves[h].emplace_back(first[static_cast<size_t>(c)], c);
-      load[h] += subtree[static_cast<size_t>(c)];
-    }
-    return std::max(load[0], load[1]);
-  };
-  std::vector<int> shared;
+// Deals the subtrees to the lighter half, heaviest first; returns the heavier half's load.
+double deal(const EliminationTree& tree, std::vector<int> subtrees, std::vector<std::pair<int, int>> (&halves)[2],
+            double (&load)[2]) {
+  std::sort(subtrees.begin(), subtrees.end(), [&](int a, int b) {
+    return tree.subtree[static_cast<size_t>(a)] != tree.subtree[static_cast<size_t>(b)]
+               ? tree.subtree[static_cast<size_t>(a)] > tree.subtree[static_cast<size_t>(b)]
+               : a < b;
+  });
+  for (int h = 0; h < 2; ++h) {
+    halves[h].clear();
+    load[h] = 0.0;
+  }
+  for (int c : subtrees) {
+    const int h = load[1] < load[0] ? 1 : 0;
+    halves[h].emplace_back(tree.first[static_cast<size_t>(c)], c);
+    load[h] += tree.subtree[static_cast<size_t>(c)];
+  }
+  return std::max(load[0], load[1]);
+}
+
+struct Halves {
+  std::vector<int> shared;                   // supernodes done after (forward) or before the halves
+  std::vector<std::pair<int, int>> halves[2];  // subtree ranges [first, root]
+  double work[2] = {0.0, 0.0}, shared_work = 0.0;
+};
+
+// Which subtrees make the two halves: the candidates start as the roots, and the heaviest one is
+// split again and again (its root goes to the shared part, done after the halves, its children
+// become candidates). Each state deals the candidates to the lighter half, heaviest first, and the
+// state with the shortest estimated time, shared + heavier half, is kept.
+Halves plan_halves(const EliminationTree& tree) {
+  Halves p;
+  std::vector<int> candidates = tree.roots, shared;
   double shared_work = 0.0, best_time = HUGE_VAL;
   constexpr int kMaxSplits = 64;  // the shared part only grows: a good split is an early one
   for (int split = 0; split <= kMaxSplits; ++split) {
     std::vector<std::pair<int, int>> halves[2];
     double load[2];
-    const double time = shared_work + deal(candidates, halves, load);
+    const double time = shared_work + deal(tree, candidates, halves, load);
     if (time < best_time) {
       best_time = time;
       p.shared = shared;
@@ -277,16 +300,35 @@ SupernodalSolver::SupernodalSolver(const SupernodalFactor& f, SupernodalKernels 
     }
     int heaviest = -1;
     for (int c : candidates)
-      if (!children[static_cast<size_t>(c)].empty() && (heaviest < 0 || subtree[static_cast<size_t>(c)] > subtree[static_cast<size_t>(heaviest)]))
+      if (!tree.children[static_cast<size_t>(c)].empty() &&
+          (heaviest < 0 || tree.subtree[static_cast<size_t>(c)] > tree.subtree[static_cast<size_t>(heaviest)]))
         heaviest = c;
     if (heaviest < 0) break;
     candidates.erase(std::find(candidates.begin(), candidates.end(), heaviest));
     shared.push_back(heaviest);
-    shared_work += work[static_cast<size_t>(heaviest)];
-    candidates.insert(candidates.end(), children[static_cast<size_t>(heaviest)].begin(), children[static_cast<size_t>(heaviest)].end());
+    shared_work += tree.work[static_cast<size_t>(heaviest)];
+    const std::vector<int>& kids = tree.children[static_cast<size_t>(heaviest)];
+    candidates.insert(candidates.end(), kids.begin(), kids.end());
   }
   std::sort(p.shared.begin(), p.shared.end());
+  for (auto& h : p.halves) std::sort(h.begin(), h.end());
+  return p;
+}
 
+}  // namespace
+
+SupernodalSolver::SupernodalSolver(const SupernodalFactor& f, SupernodalKernels kernels)
+    : f_(f), plan_(std::make_unique<Plan>()) {
+  const EliminationTree tree = elimination_tree(f);
+  Plan& p = *plan_;
+  p.max_rows = tree.max_rows;
+  Halves halves = plan_halves(tree);
+  p.shared = std::move(halves.shared);
+  p.shared_work = halves.shared_work;
+  for (int h = 0; h < 2; ++h) {
+    p.halves[h] = std::move(halves.halves[h]);
+    p.work[h] = halves.work[h];
+  }
 #ifdef SLIM_HAVE_AVX2_KERNELS
   if (kernels == SupernodalKernels::Auto && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
     p.forward = forward_range_avx2;
@@ -295,8 +337,7 @@ SupernodalSolver::SupernodalSolver(const SupernodalFactor& f, SupernodalKernels 
 #else
   (void)kernels;
 #endif
-  for (auto& h : p.halves) std::sort(h.begin(), h.end());
-  p.shared_slot.assign(static_cast<size_t>(n), -1);
+  p.shared_slot.assign(static_cast<size_t>(f.n), -1);
   for (int s : p.shared)
     for (int c = f.first_column[s]; c < f.first_column[s + 1]; ++c) p.shared_slot[static_cast<size_t>(c)] = p.shared_columns++;
 }

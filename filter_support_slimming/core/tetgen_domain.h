@@ -20,16 +20,17 @@
 // added. Use max_tet_volume to make the interior finer.
 //
 // Safety. TetGen 1.5 segfaults on self-intersecting input, and inside MeshLab that would lose the
-// user's work. So (1) check_tetgen_input refuses what TetGen cannot take, and (2) TetGen runs in a
-// forked child process that writes its result into a pipe; a crash, an out-of-memory or a
-// timeout of the child becomes a std::runtime_error in the caller, and the caller lives on.
-// The child only runs TetGen, write() and _exit(), as befits a fork of a multi-threaded process.
+// user's work. So (1) check_tetgen_input refuses what TetGen cannot take (surface_intersections.h
+// finds the faces that cross), and (2) TetGen runs in a forked child process that writes its
+// result into a pipe (child_process.h); a crash, an out-of-memory or a timeout of the child
+// becomes a std::runtime_error in the caller, and the caller lives on.
 #pragma once
 
 #include <string>
 
 #include <Eigen/Core>
 
+#include "core/checked_surface.h"
 #include "core/surface.h"
 #include "core/tet_mesh.h"
 
@@ -65,9 +66,11 @@ bool tetgen_available();
 // or two faces that intersect (touching counts; faces sharing an edge or a vertex may only meet
 // there). Runs on a uniform grid of face boxes, so it stays near-linear.
 void check_tetgen_input(const Surface& surface);
+void check_tetgen_input(const CheckedSurface& surface);  // the same, the surface already checked
 
 // Throws std::invalid_argument (check_tetgen_input, bad options) or std::runtime_error (built
 // without TetGen, TetGen refused the input, crashed, ran out of memory or timed out).
 TetgenDomain tetgen_domain(const Surface& surface, const Eigen::Vector3d& d, const TetgenOptions& options = {});
+TetgenDomain tetgen_domain(const CheckedSurface& surface, const Eigen::Vector3d& d, const TetgenOptions& options = {});
 
 }  // namespace slim

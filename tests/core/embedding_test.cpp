@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 
 #include "core/embedding.h"
 #include "core/surface.h"
 #include "core/voxel_domain.h"
 #include "support/shapes.h"
+#include "support/tet_grid.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -192,4 +194,30 @@ TEST(Embedding, SameResultWhateverTheThreadCount) {
   EXPECT_EQ(one.tet_faces, many.tet_faces);
   EXPECT_EQ(one.tet_face_areas, many.tet_face_areas);
 #endif
+}
+
+TEST(Embedding, GeneralTetMeshPathLocatesPointsInsideIrregularTets) {
+  // The general path's barycentric coordinates on tets that are not Kuhn tets of a grid: a
+  // jittered tet grid, and a cloud of points strictly inside it. Every point must be rebuilt from
+  // its coordinates in the tet it was given, and that tet must hold it (all coordinates >= 0).
+  TetMesh m = test::tet_grid(3, 3, 3, 10.0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-2.0, 2.0), inside(1.0, 29.0);
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v) {
+    const bool boundary = (m.V.row(v).array() == 0.0).any() || (m.V.row(v).array() == 30.0).any();
+    if (!boundary) m.V.row(v) += Eigen::RowVector3d(jitter(rng), jitter(rng), jitter(rng));
+  }
+  for (Eigen::Index t = 0; t < m.T.rows(); ++t) ASSERT_GT(tet_volume(m.V, m.T.row(t)), 0.0);
+  Surface cloud;
+  cloud.V.resize(300, 3);
+  for (Eigen::Index i = 0; i < cloud.V.rows(); ++i) cloud.V.row(i) << inside(rng), inside(rng), inside(rng);
+  cloud.F.resize(100, 3);
+  for (Eigen::Index f = 0; f < 100; ++f) cloud.F.row(f) << static_cast<int>(3 * f), static_cast<int>(3 * f + 1), static_cast<int>(3 * f + 2);
+  const Embedding e = embed_surface(cloud, m);
+  Points rebuilt;
+  embedded_positions(e, m.V, rebuilt);
+  EXPECT_LT((rebuilt - cloud.V).rowwise().norm().maxCoeff(), 1e-9);
+  for (Eigen::Index i = 0; i < cloud.V.rows(); ++i) {
+    EXPECT_GE(e.vertex_bary.row(i).minCoeff(), -1e-9) << "point " << i;
+  }
 }

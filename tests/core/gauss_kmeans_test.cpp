@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <set>
 
@@ -161,4 +162,43 @@ TEST(GaussKmeans, RejectsBadInput) {
   EXPECT_THROW(gauss_kmeans(n, p.areas, 2), std::invalid_argument);
   n(0, 0) = std::nan("");
   EXPECT_THROW(gauss_kmeans(n, p.areas, 2), std::invalid_argument);
+}
+
+TEST(GaussKmeans, SeedingDrawsByArea) {
+  // Three directions 60 degrees apart, a and b with area 1, c with a billionth of it. Seeded by
+  // area, the seeds are a and b (in either order) almost surely; c joins b, and a is a cluster of
+  // its own whose centroid is a exactly. Seeded by count instead, c is a seed in two runs of three
+  // and a ends in a mixed cluster (the final centroids then depend on the seeds; about 23% of
+  // seeds would still give a alone). Over many seeds the difference cannot hide.
+  Eigen::Matrix3Xd n(3, 3);
+  n << Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0.5, std::sqrt(3.0) / 2, 0), Eigen::Vector3d(-0.5, std::sqrt(3.0) / 2, 0);
+  const Eigen::Vector3d areas(1.0, 1.0, 1e-9);
+  int a_alone = 0;
+  const int runs = 200;
+  for (int seed = 1; seed <= runs; ++seed) {
+    GaussKmeansOptions o;
+    o.seed = static_cast<std::uint32_t>(seed);
+    const GaussKmeans r = gauss_kmeans(n, areas, 2, o);
+    for (Eigen::Index c = 0; c < r.centroids.cols(); ++c)
+      if ((r.centroids.col(c) - n.col(0)).norm() < 1e-12) ++a_alone;
+  }
+  EXPECT_GE(a_alone, runs * 95 / 100) << a_alone << " of " << runs;
+}
+
+TEST(GaussKmeans, EveryCentroidIsItsMembersAreaWeightedMean) {
+  std::mt19937 rng(8);
+  const Patch p = groups_around(test::random_normals_in_cap(rng, 4, Eigen::Vector3d::UnitZ(), M_PI), 25, 35 * kDeg, 9);
+  for (int k = 1; k <= 5; ++k) {
+    const GaussKmeans r = gauss_kmeans(p.normals, p.areas, k);
+    if (!r.converged) continue;
+    for (Eigen::Index c = 0; c < r.centroids.cols(); ++c) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      double weight = 0.0;
+      for (Eigen::Index i = 0; i < p.normals.cols(); ++i)
+        if (r.assignment(i) == c) sum += p.areas(i) * p.normals.col(i), weight += p.areas(i);
+      if (weight == 0.0) continue;
+      EXPECT_NEAR(r.cluster_weight(c), weight, 1e-12 * weight);
+      EXPECT_LT((r.centroids.col(c) - sum.normalized()).norm(), 1e-9) << "k " << k << ", cluster " << c;
+    }
+  }
 }

@@ -145,3 +145,32 @@ TEST(Overhang, BadInputIsRefusedWithAReason) {
     EXPECT_NE(std::string(e.what()).find("no faces"), std::string::npos);
   }
 }
+
+TEST(Overhang, ZeroPlateToleranceMeansExactContact) {
+  // The cube's bottom lies exactly at the lowest height: with a tolerance of 0 it still rests on
+  // the plate (the rule is "within", inclusive); a face a hair above does not.
+  OverhangOptions o;
+  o.plate_tolerance = 0.0;
+  const OverhangReport r = analyse_overhang(test::box({0, 0, 0}, {10, 10, 10}), o);
+  EXPECT_EQ(r.plate_count, 2);
+  EXPECT_EQ(r.risky_count, 0);
+  Surface lifted = test::box({0, 0, 0}, {10, 10, 10});
+  for (Eigen::Index v = 0; v < lifted.V.rows(); ++v)
+    if (lifted.V(v, 0) > 5 && lifted.V(v, 2) == 0.0) lifted.V(v, 2) = 1e-9;  // tilt the bottom a hair
+  const OverhangReport tilted = analyse_overhang(lifted, o);
+  EXPECT_LT(tilted.plate_count, 2);
+  EXPECT_GT(tilted.risky_count, 0);
+}
+
+TEST(Overhang, AFaceExactlyOnTheThresholdIsSafe) {
+  // At alpha_max = 0 (tau = 0) a vertical wall has n·d = 0 exactly: on the threshold, safe. Only
+  // the bottom overhangs when the plate rule is off: 100 mm², not the walls' 400.
+  OverhangOptions o;
+  o.alpha_max_deg = 0.0;
+  o.plate_tolerance = -1.0;
+  const OverhangReport r = analyse_overhang(test::box({0, 0, 0}, {10, 10, 10}), o);
+  EXPECT_EQ(r.risky_count, 2);
+  EXPECT_NEAR(r.risky_area, 100.0, 1e-9);
+  for (Eigen::Index f = 0; f < r.quality.size(); ++f)
+    if (r.quality(f) == 0.0) EXPECT_FALSE(r.risky[static_cast<size_t>(f)]) << "face " << f;
+}

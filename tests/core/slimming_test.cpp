@@ -114,7 +114,7 @@ TEST(Slimming, ArchOpeningIsSlimmedWithALargeBudget) {
 TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
   // At 45 degrees the flat undersides of the T's arms and the mushroom's cap need 35-45 degrees of
   // rotation, more than a 5% budget allows for the whole underside: bending them up as a body
-  // lifts the overhangs that are left, and PrusaSlicer then lays more support (README, the judge).
+  // lifts the overhangs that are left, and PrusaSlicer then lays more support (docs/judge.md).
   // The result is the iterate with the least shadow volume, so such a run (the paper's method at
   // its default 40 iterations) hands back the input itself, untouched. The coherent method turns
   // flat overhangs towards their edges instead, and on all four shapes the risky area and the

@@ -1,6 +1,6 @@
 // The libFuzzer target: fuzz bytes -> a mesh and settings (fuzz_case.h) -> the core, every outcome
 // checked. A result that is not sane aborts, so libFuzzer keeps the input as a crash. Build with
-// -DSLIM_FUZZ=ON and clang; scripts/fuzz.sh runs it (README: Fuzzing).
+// -DSLIM_FUZZ=ON and clang; scripts/fuzz.sh runs it (docs/robustness.md: Fuzzing).
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>

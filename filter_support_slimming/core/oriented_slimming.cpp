@@ -1,0 +1,18 @@
+#include "core/oriented_slimming.h"
+
+namespace slim {
+
+OrientedSlimming slim_in_best_pose(const Surface& surface, SlimmingOptions slimming, OrientationOptions orientation) {
+  orientation.alpha_max_deg = slimming.alpha_max_deg;
+  orientation.plate_tolerance = slimming.plate_tolerance;
+  orientation.threads = slimming.threads;
+  OrientedSlimming job;
+  job.orientation = optimize_orientation(surface, orientation);
+  job.posed = apply_orientation(surface, job.orientation.rotation);
+  slimming.print_direction = Eigen::Vector3d::UnitZ();
+  if (slimming.plate_tolerance < 0) slimming.plate_tolerance = job.orientation.plate_tolerance;
+  job.slimming = slim_supports(job.posed, slimming);
+  return job;
+}
+
+}  // namespace slim

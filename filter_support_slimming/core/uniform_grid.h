@@ -1,0 +1,116 @@
+// A uniform grid of cells over a box, each cell listing the items whose bounding boxes overlap it:
+// the candidates near a point or a box, for the nearest-segment search (overhang_boundary.h), the
+// tets around a point (tet_locator.h) and the face pairs that may intersect
+// (surface_intersections.h).
+//
+//   UniformGrid grid(origin, cell, dims);
+//   grid.fill(count, [&](int i, Eigen::Vector3d& lo, Eigen::Vector3d& hi) { ...item i's box... });
+//   for (int item : grid.items(grid.index(grid.cell_of(p)))) ...
+//
+// Inputs
+//   origin  the grid's low corner (3, any units).
+//   cell    cell size along each axis (3, > 0, the same units).
+//   dims    cells along each axis (3, >= 1). Cell (i, j, k) spans origin + (i, j, k) * cell to the
+//           next corner; the outer cells reach on to infinity (points beyond the grid clamp).
+//   fill    count items, each given by its axis-aligned box lo..hi.
+// Outputs
+//   cell_of(p)       the cell holding p, clamped to the grid; a NaN coordinate goes to cell 0, and
+//                    nothing is cast out of int's range. Monotone in p, so a point inside an
+//                    item's box always lies in one of the item's cells.
+//   items(c)         the items listed in cell c (index(i, j, k)), ascending.
+//   for_cells(lo, hi, visit)  visit(index) for every cell of the box, k outermost, i innermost.
+//   entries(count, box_of)    the (cell, item) entries fill() would make, to choose dims first.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace slim {
+
+class UniformGrid {
+ public:
+  struct Items {
+    const int* first;
+    const int* last;
+    const int* begin() const { return first; }
+    const int* end() const { return last; }
+  };
+
+  UniformGrid() = default;
+  UniformGrid(const Eigen::Vector3d& origin, const Eigen::Vector3d& cell, const Eigen::Vector3i& dims)
+      : origin_(origin), cell_(cell), dims_(dims) {}
+
+  // The cell index along `axis` of coordinate x.
+  int axis_cell(double x, int axis) const {
+    const double t = (x - origin_(axis)) / cell_(axis);
+    if (!(t >= 0.0)) return 0;
+    if (t >= static_cast<double>(dims_(axis) - 1)) return dims_(axis) - 1;
+    return static_cast<int>(t);
+  }
+  Eigen::Vector3i cell_of(const Eigen::Vector3d& p) const {
+    return {axis_cell(p(0), 0), axis_cell(p(1), 1), axis_cell(p(2), 2)};
+  }
+  size_t index(int i, int j, int k) const {
+    return static_cast<size_t>(i) +
+           static_cast<size_t>(dims_(0)) * (static_cast<size_t>(j) + static_cast<size_t>(dims_(1)) * static_cast<size_t>(k));
+  }
+  size_t index(const Eigen::Vector3i& c) const { return index(c(0), c(1), c(2)); }
+  size_t cell_count() const {
+    return static_cast<size_t>(dims_(0)) * static_cast<size_t>(dims_(1)) * static_cast<size_t>(dims_(2));
+  }
+
+  template <class Visit>
+  void for_cells(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, Visit&& visit) const {
+    const Eigen::Vector3i a = cell_of(lo), b = cell_of(hi);
+    for (int k = a(2); k <= b(2); ++k)
+      for (int j = a(1); j <= b(1); ++j)
+        for (int i = a(0); i <= b(0); ++i) visit(index(i, j, k));
+  }
+
+  // How many (cell, item) entries fill() would make: a caller can choose a coarser grid first.
+  template <class BoxOf>
+  double entries(int count, BoxOf&& box_of) const {
+    double total = 0.0;
+    Eigen::Vector3d lo, hi;
+    for (int i = 0; i < count; ++i) {
+      box_of(i, lo, hi);
+      const Eigen::Vector3i a = cell_of(lo), b = cell_of(hi);
+      total += static_cast<double>(b(0) - a(0) + 1) * (b(1) - a(1) + 1) * (b(2) - a(2) + 1);
+    }
+    return total;
+  }
+
+  // Lists every item in the cells its box overlaps (two passes: count, then place), items in
+  // ascending order within each cell.
+  template <class BoxOf>
+  void fill(int count, BoxOf&& box_of) {
+    start_.assign(cell_count() + 1, 0);
+    Eigen::Vector3d lo, hi;
+    for (int i = 0; i < count; ++i) {
+      box_of(i, lo, hi);
+      for_cells(lo, hi, [&](size_t c) { ++start_[c + 1]; });
+    }
+    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    items_.resize(start_.back());
+    std::vector<size_t> next(start_.begin(), start_.end() - 1);
+    for (int i = 0; i < count; ++i) {
+      box_of(i, lo, hi);
+      for_cells(lo, hi, [&](size_t c) { items_[next[c]++] = i; });
+    }
+  }
+
+  Items items(size_t cell) const { return {items_.data() + start_[cell], items_.data() + start_[cell + 1]}; }
+
+  const Eigen::Vector3d& origin() const { return origin_; }
+  const Eigen::Vector3d& cell_size() const { return cell_; }
+  const Eigen::Vector3i& dims() const { return dims_; }
+
+ private:
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d cell_ = Eigen::Vector3d::Ones();
+  Eigen::Vector3i dims_ = Eigen::Vector3i::Ones();
+  std::vector<size_t> start_;
+  std::vector<int> items_;
+};
+
+}  // namespace slim
