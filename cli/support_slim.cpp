@@ -12,6 +12,7 @@
 
 #include "core/oriented_slimming.h"
 #include "core/slimming.h"
+#include "core/welded_view.h"
 #include "vcg_adapters/mesh_io.h"
 
 namespace {
@@ -19,10 +20,14 @@ namespace {
 const char* kUsage = R"(usage: support-slim IN -o OUT [options]
 
 Reshapes a mesh so that it needs less support material when 3D printed (local/global
-minimal-rotation optimizer). Reads and writes PLY, STL, OBJ and OFF; OUT is written in the input's
-frame (no rescaling, no recentring), or with --orient in the print pose the search chose. A PLY
-output carries face quality n.d + sin(alpha_max) (negative = still risky), its colour ramp, and
-the still-risky faces as selected.
+minimal-rotation optimizer). Reads and writes PLY, STL, OBJ and OFF. OUT has IN's vertex list and
+face list in IN's order: nothing is welded, dropped or reordered (STL, which stores each
+triangle's corners apart, is welded when read), and IN's vertex colours, texture coordinates,
+vertex quality and selection pass through; vertex normals too, recomputed where a vertex moved.
+The run replaces three face attributes: face quality becomes n.d + sin(alpha_max) (negative =
+still risky; PLY), face colour its ramp (PLY, OFF, STL), and the face selection the still-risky
+faces (PLY). OUT is in the input's frame (no rescaling, no recentring), or with --orient in the
+print pose the search chose. See docs/files-and-attributes.md.
 
 options:
   -o, --output FILE        where to write the result (required)
@@ -93,6 +98,21 @@ std::vector<bool> read_face_ids(const std::string& path, Eigen::Index faces) {
   return marked;
 }
 
+// What was read and how it is written back: the file's own lists (indexed formats), or the
+// vertices STL's separate corners were welded into.
+void print_mesh_line(const slim::vcgx::MeshFile& file, const slim::WeldedView& view) {
+  const long long nv = file.surface.V.rows(), nf = file.surface.F.rows();
+  if (file.format == slim::vcgx::MeshFormat::Stl) {
+    std::printf("  mesh            %lld triangles; STL stores each corner apart: %lld corners welded into %lld vertices\n", nf,
+                static_cast<long long>(file.stl_corners), nv);
+  } else {
+    std::printf("  mesh            %lld vertices, %lld faces, written back as read (same lists, same order)\n", nv, nf);
+    if (view.merged() > 0)
+      std::printf("                  %lld vertices repeat an earlier one's position: computed as one, they move together\n",
+                  static_cast<long long>(view.merged()));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -149,13 +169,15 @@ int main(int argc, char** argv) {
   if (orient && dir_given) die("--orient chooses the print direction itself: leave out --dir");
   if (!oriented_out.empty() && !orient) die("--oriented-output needs --orient");
 
+  slim::WeldedView view;  // the surface the core computes on (core/welded_view.h)
   try {
-    slim::vcgx::FaceExtras extras;
-    const slim::Surface mesh = slim::vcgx::load_surface(in, &extras);
+    const slim::vcgx::MeshFile file = slim::vcgx::read_mesh(in);
+    view = slim::weld_coincident(file.surface);
+    const slim::Surface& mesh = view.surface;
     if (!features_file.empty()) o.rigid_features = read_face_ids(features_file, mesh.F.rows());
     if (features_from_mesh) {
-      if (extras.selected.empty()) die(in + " carries no face selection to use as rigid features");
-      o.rigid_features = extras.selected;
+      if (file.face.selected.empty()) die(in + " carries no face selection to use as rigid features");
+      o.rigid_features = file.face.selected;
     }
     if (!quiet) {
       o.progress = [](double fraction, const std::string& message) {
@@ -165,24 +187,27 @@ int main(int argc, char** argv) {
       };
     }
     // Orientation first: the part turns rigidly into its print pose and is slimmed there, so the
-    // slimming's displacement and volume figures count the deformation alone.
+    // slimming's displacement and volume figures count the deformation alone. The core computes on
+    // the welded view; the files get the input's own vertex list back.
     slim::OrientedSlimming job;
     if (orient) {
       if (!quiet) std::fprintf(stderr, "[orient] searching the print direction\n");
       job = slim::slim_in_best_pose(mesh, o, slim::with_effort(effort));
       if (!oriented_out.empty()) {
         const slim::OverhangReport pose = slim::print_pose_overhang(job.posed, job.orientation, o.alpha_max_deg);
-        slim::vcgx::save_surface(oriented_out, job.posed, {pose.quality, pose.risky});
+        slim::vcgx::write_mesh(oriented_out, file, view.positions_to_input(file.surface.V, job.posed.V),
+                               {pose.quality, pose.risky});
       }
     } else {
       job.slimming = slim::slim_supports(mesh, o);
     }
     const slim::SlimmingResult& r = job.slimming;
     const slim::OrientationResult& orientation = job.orientation;
-    slim::vcgx::save_surface(out, r.surface, {r.after.quality, r.after.risky});
+    slim::vcgx::write_mesh(out, file, view.positions_to_input(file.surface.V, r.surface.V), {r.after.quality, r.after.risky});
 
     const slim::IterationStats& last = r.history.back();
     std::printf("support-slim: %s -> %s\n", in.c_str(), out.c_str());
+    print_mesh_line(file, view);
     if (orient) {
       const slim::OrientationCandidate& best = orientation.best;
       const double turn = std::acos(std::clamp(best.direction.z(), -1.0, 1.0)) * 180.0 / M_PI;
@@ -216,12 +241,12 @@ int main(int argc, char** argv) {
                 r.volume_before != 0 ? 100 * (r.volume_after / r.volume_before - 1) : 0.0);
     std::printf("  AE              %.2f%%   inverted tets %d\n", 100 * last.approximation_error, last.inverted_tets);
     std::printf("  domain          %d vertices, %d tets; solver %s\n", r.domain_vertices, r.domain_tets,
-                r.solver_backend.c_str());
+                r.solver_backend.empty() ? "none (no iteration ran)" : r.solver_backend.c_str());
     if (r.inside_out)
       std::printf("  note            the input is inside out (every normal points inwards): it was computed turned\n"
                   "                  over, and %s keeps the input's face orientation\n", out.c_str());
   } catch (const std::exception& e) {
-    die(e.what());
+    die(e.what() + view.vertex_number_note(e.what()));
   } catch (...) {
     die("unexpected internal error (not a std::exception)");
   }

@@ -9,6 +9,7 @@
 #include "core/oriented_slimming.h"
 #include "core/overhang.h"
 #include "core/slimming.h"
+#include "core/welded_view.h"
 #include "vcg_adapters/surface_adapter.h"
 
 namespace slim::plugin {
@@ -69,6 +70,25 @@ MeshModel& current_triangle_mesh(MeshDocument& md) {
   return *m;
 }
 
+// The layer as the core sees it: its live vertices and faces in container order, coincident
+// vertices merged (core/welded_view.h), so that faces meeting at a seam share their vertex.
+// Results come back to every vertex of the layer, whose list and order never change.
+struct LayerView {
+  slim::Surface surface;  // the layer's own vertex and face lists
+  slim::WeldedView view;
+  explicit LayerView(const CMeshO& cm) : surface(slim::vcgx::to_surface(cm)), view(slim::weld_coincident(surface)) {}
+  // Runs `compute` on the merged surface; a refusal that names a vertex says which numbering it uses.
+  template <class Compute>
+  auto run(Compute&& compute) const {
+    try {
+      return compute(view.surface);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(e.what() + view.vertex_number_note(e.what()));
+    }
+  }
+  slim::Points positions(const slim::Points& view_after) const { return view.positions_to_input(surface.V, view_after); }
+};
+
 // Logged by both filters when the mesh is inside out (slim::inside_out).
 const char* const kInsideOutNotice =
     "the mesh is inside out (closed, with every normal pointing inwards): it was analysed with its faces turned "
@@ -97,13 +117,14 @@ void add_overhang_analysis_parameters(const MeshModel& m, RichParameterList& par
 
 void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
   MeshModel& mm = current_triangle_mesh(md);
-  const slim::Surface surface = slim::vcgx::to_surface(mm.cm);
+  const LayerView layer(mm.cm);
   // The rule reads the outside from the normals (see slimming.h): an inside-out mesh is analysed
   // turned over; faces that disagree are analysed as they are, with a warning.
-  const slim::EdgeTopology edges = slim::edge_topology(surface);
-  const bool insideOut = slim::inside_out(surface, edges);
-  const slim::OverhangReport report =
-      slim::analyse_overhang(insideOut ? slim::flipped(surface) : surface, overhang_options(par));
+  const slim::EdgeTopology edges = slim::edge_topology(layer.view.surface);
+  const bool insideOut = slim::inside_out(layer.view.surface, edges);
+  const slim::OverhangReport report = layer.run([&](const slim::Surface& s) {
+    return slim::analyse_overhang(insideOut ? slim::flipped(s) : s, overhang_options(par));
+  });
 
   // Only now that the analysis succeeded is the layer touched.
   const bool colorize = par.getBool("colorize");
@@ -232,13 +253,15 @@ MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& s
 
 void apply_print_orientation(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
   MeshModel& input = current_triangle_mesh(md);
-  const slim::Surface surface = slim::vcgx::to_surface(input.cm);
-  const slim::OrientationResult r =
-      slim::optimize_orientation(surface, orientation_options(par.getFloat("alphaMax"), par.getEnum("searchEffort")));
+  const LayerView layer(input.cm);
+  const slim::OrientationResult r = layer.run([&](const slim::Surface& s) {
+    return slim::optimize_orientation(s, orientation_options(par.getFloat("alphaMax"), par.getEnum("searchEffort")));
+  });
   if (par.getBool("applyResult")) {
-    const slim::Surface posed = slim::apply_orientation(surface, r.rotation);
+    const slim::Surface posed = slim::apply_orientation(layer.view.surface, r.rotation);
     const slim::OverhangReport report = slim::print_pose_overhang(posed, r, par.getFloat("alphaMax"));
-    add_result_layer(md, input, "oriented", ResultFrame::PrintPose, posed.V, report.quality, report.risky, nullptr);
+    add_result_layer(md, input, "oriented", ResultFrame::PrintPose, layer.positions(posed.V), report.quality,
+                     report.risky, nullptr);
   }
   log_orientation(run, "Print Orientation", r, true);
   run.outputs["shadow_volume_before"] = r.as_given.shadow_volume;
@@ -249,19 +272,16 @@ void apply_print_orientation(MeshDocument& md, const RichParameterList& par, Fil
 
 // ---- Support Slimming ------------------------------------------------------------------------
 
+// Shown at the top of the dialog, always: short, so that every parameter fits below it on a
+// 1280x1024 screen in MeshLab 2020.09. The details are in each parameter's help, which the
+// dialog's Help button shows.
 const char* const kSupportSlimmingInfo =
-    "Reshapes the mesh so that it needs less support material when 3D printed along the <i>print "
-    "direction</i>, while keeping it as rigid as possible. The mesh is embedded in a tetrahedral domain "
-    "made from voxels; each iteration rotates every tetrahedron that holds overhanging (risky) faces by the "
-    "smallest rotation that makes them self-supporting, then blends the tetrahedra back together with an "
-    "as-rigid-as-possible solve. The part's base stays on the build plate.<br>"
-    "The result is a <b>new layer</b>; the input layer is not changed. On the result, face quality is "
-    "<i>n&middot;d + sin(&alpha;<sub>max</sub>)</i> (negative means still risky), coloured on the fixed "
-    "ramp of <i>Overhang Analysis</i>; the faces that are still risky are selected; vertex quality is the "
-    "displacement in mesh units. The run stops at the iteration limit, when the risky area stops falling, "
-    "or before any vertex moves further than the deviation budget.<br>"
-    "From <i>Direct Computation of Minimal Rotation for Support Slimming</i> (incremental LP on the Gauss "
-    "sphere, area-weighted K-means proxies, &sect;IV-B rigid features).";
+    "Deforms the mesh, as rigidly as possible, so that it needs less support material when printed "
+    "along the <i>print direction</i>. The result is a <b>new layer</b>; the input layer is not changed. "
+    "The result keeps the input's vertices, their order and attributes, except: the still-risky faces "
+    "are selected, face quality is <i>n&middot;d + sin(&alpha;<sub>max</sub>)</i> (negative: risky) and "
+    "coloured as by <i>Overhang Analysis</i>, and vertex quality is the displacement. "
+    "<i>Help</i> explains each parameter.";
 
 void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par) {
   const slim::SlimmingOptions defaults;
@@ -274,21 +294,27 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
                         "non-manifold meshes). TetGen: a constrained tetrahedralization of the surface; needs a "
                         "closed, clean, non-self-intersecting mesh."));
   par.addParam(RichEnum("method", 0, QStringList() << "Coherent" << "Paper", "Method",
-                        "Coherent: the default. Neighbouring rotations agree, risky regions turn as a body, and "
-                        "flat overhangs turn towards their nearest edge. Paper: the published method as written, "
-                        "for comparison."));
+                        "Each iteration turns every tetrahedron holding risky faces by the smallest rotation that "
+                        "makes them self-supporting (an exact LP on the Gauss sphere; area-weighted K-means proxies "
+                        "when no single rotation exists), then blends the tetrahedra back together with an "
+                        "as-rigid-as-possible solve; the base stays on the build plate. Coherent (default): "
+                        "neighbouring rotations agree, risky regions turn as a body, and flat overhangs turn towards "
+                        "their nearest edge. Paper: <i>Direct Computation of Minimal Rotation for Support "
+                        "Slimming</i> as written, for comparison."));
   par.addParam(RichInt("maxIterations", defaults.max_iterations, "Max iterations",
-                       "The largest number of local/global iterations. 0 only embeds the mesh and writes it back."));
+                       "The largest number of local/global iterations; the run ends sooner when the risky area "
+                       "stops falling. 0 only embeds the mesh and writes it back."));
   par.addParam(RichFloat("maxDeviation", float(defaults.max_deviation_pct), "Deviation budget (%)",
-                         "The largest distance any vertex may move, as a percentage of the bounding box "
-                         "diagonal. The part of a step that would take a vertex further is rolled back, so no vertex "
-                         "ever moves further."));
+                         "The farthest any vertex may move, as a percentage of the bounding box diagonal. It is a "
+                         "constraint, not a stopping rule: the part of a step that would take a vertex further is "
+                         "rolled back, and the run goes on. 0: no budget."));
   par.addParam(RichInt("maxK", defaults.max_k, "Max proxies per tetrahedron",
                        "When no single rotation can make every face in a tetrahedron self-supporting, its faces "
                        "are clustered into at most this many proxy normals (area-weighted K-means)."));
   par.addParam(RichBool("preserveSelection", false, "Preserve selection as rigid features",
-                        "Each connected piece of the current face selection moves as one rigid body, so a "
-                        "feature you care about keeps its shape."));
+                        "Each connected piece of the current face selection moves as one rigid body (the paper's "
+                        "&sect;IV-B), so a feature you care about keeps its shape. The result's selection is then "
+                        "the still-risky faces, as always."));
   par.addParam(RichBool("optimizeOrientation", false, "Optimize the orientation first",
                         "First turn the part into the pose that needs the least support (as Print Orientation "
                         "does, Normal effort), then slim it there. The print direction above is then ignored: "
@@ -315,15 +341,19 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   // Everything is computed before the document is touched: a failure or a cancel leaves no layer.
   // With the orientation first, the part turns rigidly into its print pose and is slimmed there,
   // so the displacement and the volume change are the deformation's alone.
-  const slim::Surface surface = slim::vcgx::to_surface(input.cm);
+  const LayerView layer(input.cm);
   const bool orient = par.getBool("optimizeOrientation");
-  slim::OrientedSlimming job;
-  if (orient) job = slim::slim_in_best_pose(surface, options, orientation_options(par.getFloat("alphaMax"), 1));
-  else job.slimming = slim::slim_supports(surface, options);
+  const slim::OrientedSlimming job = layer.run([&](const slim::Surface& surface) {
+    if (orient) return slim::slim_in_best_pose(surface, options, orientation_options(par.getFloat("alphaMax"), 1));
+    slim::OrientedSlimming slimmed;
+    slimmed.slimming = slim::slim_supports(surface, options);
+    return slimmed;
+  });
   const slim::SlimmingResult& r = job.slimming;
   const slim::OrientationResult& orientation = job.orientation;
-  add_result_layer(md, input, "slimmed", orient ? ResultFrame::PrintPose : ResultFrame::Input, r.surface.V,
-                   r.after.quality, r.after.risky, &r.displacement);
+  const Eigen::VectorXd displacement = layer.view.to_input(r.displacement);
+  add_result_layer(md, input, "slimmed", orient ? ResultFrame::PrintPose : ResultFrame::Input, layer.positions(r.surface.V),
+                   r.after.quality, r.after.risky, &displacement);
   if (orient) log_orientation(run, "Support Slimming", orientation, false);  // slimming notes it below
 
   const slim::IterationStats& last = r.history.back();
@@ -333,7 +363,7 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
       r.before.risky_area > 0 ? 100.0 * (1.0 - r.after.risky_area / r.before.risky_area) : 0.0));
   run.info(QString::asprintf("Support Slimming: %d iterations in %.2f s (%s); domain %d vertices, %d tets; solver %s",
                              r.iterations, r.seconds, r.stop_reason.c_str(), r.domain_vertices, r.domain_tets,
-                             r.solver_backend.c_str()));
+                             r.solver_backend.empty() ? "none (no iteration ran)" : r.solver_backend.c_str()));
   run.info(QString::asprintf(
       "Support Slimming: displacement max %.4g, mean %.4g mm%s; volume %.6g -> %.6g mm^3 (%+.2f%%); "
       "AE %.2f%%; inverted tets %d",

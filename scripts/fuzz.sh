@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
-# Fuzzes the core: builds the libFuzzer target (clang, AddressSanitizer, UndefinedBehaviorSanitizer)
-# into build-fuzz and runs it from the seed corpus (tests/fuzz/corpus, the bad-input catalogue)
-# and the regressions (tests/fuzz/regressions) for FUZZ_SECONDS (default 60). New inputs go to
-# build-fuzz/corpus, crashes, timeouts and leaks to build-fuzz/artifacts; the exit status is
-# libFuzzer's (0: nothing found). For long runs: FUZZ_SECONDS=14400 FUZZ_JOBS=2 scripts/fuzz.sh
-# (docs/robustness.md: Fuzzing). FUZZ_SEED fixes libFuzzer's random seed: CI passes one, so that its bounded
+# Fuzzes the core and the CLI's mesh readers: builds the two libFuzzer targets (clang,
+# AddressSanitizer, UndefinedBehaviorSanitizer) into build-fuzz and runs them one after the other
+# for FUZZ_SECONDS in all (default 60: two thirds for the core, a third for the readers).
+#   slim_fuzz    the core, from tests/fuzz/corpus (the bad-input catalogue) and tests/fuzz/regressions;
+#                new inputs go to build-fuzz/corpus, findings to build-fuzz/artifacts.
+#   reader_fuzz  the PLY, STL, OBJ and OFF readers, from tests/fuzz/reader_corpus (the bad-file
+#                catalogue and well-formed files) and tests/fuzz/reader_regressions; new inputs go
+#                to build-fuzz/reader-corpus, findings to build-fuzz/reader-artifacts.
+# The exit status is 0 when neither found anything. FUZZ_TARGETS="reader_fuzz" runs one target
+# alone (with all of FUZZ_SECONDS). For long runs: FUZZ_SECONDS=14400 FUZZ_JOBS=2 scripts/fuzz.sh
+# (docs/robustness.md). FUZZ_SEED fixes libFuzzer's random seed: CI passes one, so that its bounded
 # run replays the same mutations every time and a red CI always means a reproducible finding,
 # not a lucky draw; exploratory runs leave it unset (a fresh seed each run). Idempotent.
 set -euo pipefail
@@ -18,15 +23,37 @@ generator=()
 command -v ninja >/dev/null 2>&1 && [ ! -f "$build/Makefile" ] && generator=(-G Ninja)
 cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DSLIM_FUZZ=ON -DSLIM_BUILD_PLUGIN=OFF -DSLIM_BUILD_BENCH=OFF "${generator[@]}" >/dev/null
-cmake --build "$build" -j "$(nproc)" --target slim_fuzz
-mkdir -p "$build/corpus" "$build/artifacts"
+targets=(${FUZZ_TARGETS:-slim_fuzz reader_fuzz})
+cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
 export OPENBLAS_NUM_THREADS=1
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-# -timeout: one input may take at most 30 s (they take milliseconds); -rss_limit_mb: 2 GB.
-args=(-max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1
-      -artifact_prefix="$build/artifacts/" "$build/corpus" "$here/tests/fuzz/corpus" "$here/tests/fuzz/regressions")
-if [ -n "$seed" ]; then args=(-seed="$seed" "${args[@]}"); fi
-if [ "$jobs" -gt 1 ]; then args=(-jobs="$jobs" -workers="$jobs" "${args[@]}"); fi
-cd "$build"
-"$build/tests/fuzz/slim_fuzz" "${args[@]}"
+# run TARGET SECONDS CORPUS ARTIFACTS SEEDS...: one bounded libFuzzer run. -timeout: one input may
+# take at most 30 s (they take milliseconds); -rss_limit_mb: 2 GB (also the largest single malloc).
+run() {
+  local target="$1" time="$2" corpus="$3" artifacts="$4"
+  shift 4
+  mkdir -p "$corpus" "$artifacts"
+  local args=(-max_total_time="$time" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1
+              -artifact_prefix="$artifacts/" "$corpus" "$@")
+  if [ -n "$seed" ]; then args=(-seed="$seed" "${args[@]}"); fi
+  if [ "$jobs" -gt 1 ]; then args=(-jobs="$jobs" -workers="$jobs" "${args[@]}"); fi
+  echo "fuzz: $target for $time s"
+  (cd "$build" && "$build/tests/fuzz/$target" "${args[@]}")
+}
+status=0
+for target in "${targets[@]}"; do
+  # Two targets share the time: the core two thirds, the readers the rest.
+  time="$seconds"
+  if [ "${#targets[@]}" -gt 1 ]; then
+    if [ "$target" = slim_fuzz ]; then time=$((seconds * 2 / 3)); else time=$((seconds - seconds * 2 / 3)); fi
+  fi
+  case "$target" in
+    slim_fuzz) run slim_fuzz "$time" "$build/corpus" "$build/artifacts" "$here/tests/fuzz/corpus" \
+                 "$here/tests/fuzz/regressions" || status=1 ;;
+    reader_fuzz) run reader_fuzz "$time" "$build/reader-corpus" "$build/reader-artifacts" \
+                   "$here/tests/fuzz/reader_corpus" "$here/tests/fuzz/reader_regressions" || status=1 ;;
+    *) echo "fuzz.sh: unknown target $target" >&2; exit 2 ;;
+  esac
+done
+exit "$status"

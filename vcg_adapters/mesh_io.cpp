@@ -1,8 +1,7 @@
 #include "vcg_adapters/mesh_io.h"
 
 #include <cctype>
-#include <cmath>
-#include <cstdint>
+#include <charconv>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -10,82 +9,75 @@
 #include <stdexcept>
 
 #include <vcg/complex/complex.h>
-#include <vcg/complex/algorithms/clean.h>
 #include <wrap/io_trimesh/export.h>
-#include <wrap/io_trimesh/import.h>
 
+#include "core/welded_view.h"
+#include "vcg_adapters/mesh_formats.h"
 #include "vcg_adapters/surface_adapter.h"
 
 namespace slim::vcgx {
-namespace {
+namespace detail {
 
-// Writing: the OBJ exporter needs a per-vertex normal type.
-class IoVertex;
-class IoFace;
-struct IoTypes : vcg::UsedTypes<vcg::Use<IoVertex>::AsVertexType, vcg::Use<IoFace>::AsFaceType> {};
-class IoVertex : public vcg::Vertex<IoTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::Qualityd,
-                                    vcg::vertex::Color4b, vcg::vertex::BitFlags> {};
-class IoFace : public vcg::Face<IoTypes, vcg::face::VertexRef, vcg::face::Normal3d, vcg::face::Qualityd,
-                                vcg::face::Color4b, vcg::face::BitFlags> {};
-class IoMesh : public vcg::tri::TriMesh<std::vector<IoVertex>, std::vector<IoFace>> {};
+void refuse(const std::string& path, const std::string& why) { throw std::runtime_error("cannot read " + path + ": " + why); }
 
-// VCG 2020.09's OBJ reader turns face indices 0-based in SplitToken and then GoodObjIndex rejects
-// index 0, so it silently drops every face that uses the file's first vertex (MeshLab's own OBJ
-// import shares the bug). OBJ is simple enough to read here: v and f records, "v/t/n" tokens,
-// negative (relative) indices, polygons fanned into triangles; everything else is ignored.
-Surface load_obj(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path + ": cannot open the file");
-  std::vector<Eigen::Vector3d> v;
-  std::vector<Eigen::Vector3i> f;
-  std::string line;
-  for (long lineno = 1; std::getline(in, line); ++lineno) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      Eigen::Vector3d p;
-      if (!(ls >> p.x() >> p.y() >> p.z())) throw std::runtime_error("cannot read " + path + ": bad vertex on line " + std::to_string(lineno));
-      v.push_back(p);
-    } else if (tag == "f") {
-      std::vector<int> poly;
-      std::string token;
-      while (ls >> token) {
-        long idx = 0;
-        try {
-          idx = std::stol(token.substr(0, token.find('/')));
-        } catch (const std::exception&) {
-          throw std::runtime_error("cannot read " + path + ": bad face index '" + token + "' on line " + std::to_string(lineno));
-        }
-        idx = idx < 0 ? static_cast<long>(v.size()) + idx : idx - 1;
-        if (idx < 0 || idx >= static_cast<long>(v.size()))
-          throw std::runtime_error("cannot read " + path + ": face index out of range on line " + std::to_string(lineno));
-        poly.push_back(static_cast<int>(idx));
-      }
-      for (size_t k = 2; k < poly.size(); ++k) f.emplace_back(poly[0], poly[k - 1], poly[k]);
-    }
-  }
-  Surface s;
-  s.V.resize(static_cast<Eigen::Index>(v.size()), 3);
-  for (size_t i = 0; i < v.size(); ++i) s.V.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-  s.F.resize(static_cast<Eigen::Index>(f.size()), 3);
-  for (size_t i = 0; i < f.size(); ++i) s.F.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
-  return s;
+void check_count(const std::string& path, const char* what, std::uint64_t count, std::uint64_t min_bytes,
+                 std::uint64_t available) {
+  constexpr std::uint64_t kIndexLimit = 2147483647;  // int indices, as VCG and the core use
+  if (count > kIndexLimit)
+    refuse(path, "it claims " + std::to_string(count) + " " + what + ", more than the 2147483647 this reader can index");
+  if (min_bytes > 0 && count > available / min_bytes)
+    refuse(path, "it claims " + std::to_string(count) + " " + what + ", but its " + std::to_string(available) +
+                     " bytes of data can hold at most " + std::to_string(available / min_bytes) +
+                     " (the file is truncated or its header is wrong)");
 }
 
-// VCG 2020.09's STL reader runs strlen over the 80-byte binary header, which need not hold a zero
-// byte (VCG's own exporter fills it with spaces): a stack over-read on nearly every binary STL,
-// which AddressSanitizer reports. It also dereferences a null FILE* for a missing file. STL is
-// simple enough to read here: binary when the size matches the triangle count, else ASCII (every
-// "vertex x y z"; three make a triangle). Each triangle gets its own three corners, as in the file.
-void load_stl(const std::string& path, IoMesh& m) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path + ": cannot open the file");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::vector<vcg::Point3d> corners;
+std::string shortest(double x) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
+Points vertex_normals(const Points& V, const Triangles& F) {
+  Points n = Points::Zero(V.rows(), 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::RowVector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const Eigen::RowVector3d twice_area_normal = (b - a).cross(c - a);
+    for (int k = 0; k < 3; ++k) n.row(F(f, k)) += twice_area_normal;
+  }
+  for (Eigen::Index v = 0; v < n.rows(); ++v) {
+    const double len = n.row(v).norm();
+    if (len > 0.0) n.row(v) /= len;
+  }
+  return n;
+}
+
+Points normals_to_write(const MeshFile& source, const Points& V) {
+  if (source.vertex.normal.rows() == 0) return Points(0, 3);
+  if (V == source.surface.V) return source.vertex.normal;
+  return vertex_normals(V, source.surface.F);
+}
+
+Eigen::Matrix<unsigned char, 1, 4> ramp_colour(double quality) {
+  vcg::Color4b c;
+  c.SetColorRamp(float(kQualityRampMin), float(kQualityRampMax), float(quality));
+  return {c[0], c[1], c[2], c[3]};
+}
+
+}  // namespace detail
+
+namespace {
+using detail::IoMesh;
+
+// STL: binary when the size matches the triangle count, else ASCII (every "vertex x y z"; three
+// make a triangle). Each triangle's corners are read as the file gives them, then corners with
+// equal coordinates become one vertex (in order of first appearance); the triangles keep the
+// file's order. With a non-finite coordinate nothing is welded: the core then names it.
+MeshFile read_stl(const std::string& path, const std::string& bytes) {
+  std::vector<Eigen::Vector3d> corners;
   std::uint32_t count = 0;
   if (bytes.size() >= 84) std::memcpy(&count, bytes.data() + 80, sizeof count);
   if (bytes.size() >= 84 && bytes.size() == 84 + 50 * static_cast<std::uint64_t>(count)) {
+    corners.reserve(3 * static_cast<size_t>(count));
     for (std::uint32_t t = 0; t < count; ++t) {
       float xyz[12];  // the facet normal, then three corners; the 2-byte attribute is ignored
       std::memcpy(xyz, bytes.data() + 84 + 50 * static_cast<size_t>(t), sizeof xyz);
@@ -97,66 +89,32 @@ void load_stl(const std::string& path, IoMesh& m) {
     while (text >> token) {
       if (token != "vertex") continue;
       double x, y, z;
-      if (!(text >> x >> y >> z)) throw std::runtime_error("cannot read " + path + ": a vertex without three numbers");
+      if (!(text >> x >> y >> z)) detail::refuse(path, "a vertex without three numbers");
       corners.emplace_back(x, y, z);
     }
+    if ((corners.empty() || corners.size() % 3 != 0) && bytes.size() >= 84 && bytes.compare(0, 5, "solid") != 0)
+      detail::refuse(path, "not an STL file: as binary STL its header claims " + std::to_string(count) +
+                               " triangles, which take " + std::to_string(84 + 50 * std::uint64_t(count)) +
+                               " bytes, but the file has " + std::to_string(bytes.size()));
     if (corners.empty() || corners.size() % 3 != 0)
-      throw std::runtime_error("cannot read " + path +
-                               ": not an STL file (a binary one's size matches its triangle count, an ASCII one "
-                               "lists three vertices per facet)");
+      detail::refuse(path, "not an STL file (a binary one's size matches its triangle count, an ASCII one lists "
+                           "three vertices per facet)");
   }
-  auto vi = vcg::tri::Allocator<IoMesh>::AddVertices(m, corners.size());
-  for (const vcg::Point3d& p : corners) (vi++)->P() = p;
-  auto fi = vcg::tri::Allocator<IoMesh>::AddFaces(m, corners.size() / 3);
-  for (size_t f = 0; f < corners.size() / 3; ++f, ++fi)
-    for (int k = 0; k < 3; ++k) fi->V(k) = &m.vert[3 * f + static_cast<size_t>(k)];
+  Surface soup;
+  soup.V.resize(static_cast<Eigen::Index>(corners.size()), 3);
+  soup.F.resize(static_cast<Eigen::Index>(corners.size() / 3), 3);
+  for (size_t i = 0; i < corners.size(); ++i) soup.V.row(static_cast<Eigen::Index>(i)) = corners[i].transpose();
+  for (Eigen::Index f = 0; f < soup.F.rows(); ++f) soup.F.row(f) << int(3 * f), int(3 * f + 1), int(3 * f + 2);
+  MeshFile file;
+  file.format = MeshFormat::Stl;
+  file.surface = weld_coincident(soup).surface;
+  file.stl_corners = soup.V.rows();
+  return file;
 }
 
-bool has_extension(const std::string& path, const std::string& ext) {
-  if (path.size() < ext.size()) return false;
-  std::string tail = path.substr(path.size() - ext.size());
-  for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return tail == ext;
-}
-
-}  // namespace
-
-Surface load_surface(const std::string& path, FaceExtras* extras) {
-  if (has_extension(path, ".obj")) {
-    if (extras) *extras = FaceExtras{};
-    return load_obj(path);
-  }
-  IoMesh m;
-  int mask = 0;
-  if (has_extension(path, ".stl")) {
-    load_stl(path, m);
-  } else {
-    const int err = vcg::tri::io::Importer<IoMesh>::Open(m, path.c_str(), mask);
-    if (err != 0 && vcg::tri::io::Importer<IoMesh>::ErrorCritical(err))
-      throw std::runtime_error("cannot read " + path + ": " + vcg::tri::io::Importer<IoMesh>::ErrorMsg(err));
-  }
-  // STL stores each triangle's corners separately; weld them so the surface is connected. Not
-  // with a NaN coordinate: the weld sorts by position, and NaN breaks the ordering std::sort
-  // relies on (undefined behaviour); the core then refuses the file, naming the vertex.
-  bool finite = true;
-  for (const auto& v : m.vert) finite = finite && std::isfinite(v.cP()[0] + v.cP()[1] + v.cP()[2]);
-  if (finite) {
-    vcg::tri::Clean<IoMesh>::RemoveDuplicateVertex(m);
-    vcg::tri::Allocator<IoMesh>::CompactEveryVector(m);
-  }
-  if (extras) {
-    *extras = FaceExtras{};
-    if (mask & vcg::tri::io::Mask::IOM_FACEQUALITY) {
-      extras->quality.resize(m.fn);
-      for (int i = 0; i < m.fn; ++i) extras->quality(i) = m.face[static_cast<size_t>(i)].Q();
-    }
-    if (mask & vcg::tri::io::Mask::IOM_FACEFLAGS) extras->selected = selected_faces(m);
-  }
-  return to_surface(m);
-}
-
-void save_surface(const std::string& path, const Surface& s, const FaceExtras& extras) {
-  check_surface(s);
+// STL through VCG's exporter (binary, facet normals recomputed); with results, the ramp colour
+// goes into each facet's attribute bytes, as VCG writes them.
+void write_stl(const std::string& path, const Surface& s, const FaceExtras& results) {
   IoMesh m;
   auto vi = vcg::tri::Allocator<IoMesh>::AddVertices(m, static_cast<size_t>(s.V.rows()));
   for (Eigen::Index i = 0; i < s.V.rows(); ++i, ++vi) vi->P() = vcg::Point3d(s.V(i, 0), s.V(i, 1), s.V(i, 2));
@@ -164,17 +122,73 @@ void save_surface(const std::string& path, const Surface& s, const FaceExtras& e
   for (Eigen::Index i = 0; i < s.F.rows(); ++i, ++fi)
     for (int k = 0; k < 3; ++k) fi->V(k) = &m.vert[static_cast<size_t>(s.F(i, k))];
   vcg::tri::UpdateNormal<IoMesh>::PerFaceNormalized(m);
-
   int mask = 0;
-  if (extras.quality.size() > 0) {
-    write_face_results(m, extras.quality, /*colourise=*/true, extras.selected.empty() ? nullptr : &extras.selected);
-    mask |= vcg::tri::io::Mask::IOM_FACEQUALITY | vcg::tri::io::Mask::IOM_FACECOLOR;
-  } else if (!extras.selected.empty()) {
-    write_face_results(m, Eigen::VectorXd::Zero(s.F.rows()), false, &extras.selected);
+  if (results.quality.size() > 0) {
+    write_face_results(m, results.quality, /*colourise=*/true, nullptr);
+    mask |= vcg::tri::io::Mask::IOM_FACECOLOR;
   }
-  if (!extras.selected.empty()) mask |= vcg::tri::io::Mask::IOM_FACEFLAGS;
-  const int err = vcg::tri::io::Exporter<IoMesh>::Save(m, path.c_str(), mask);
-  if (err != 0) throw std::runtime_error("cannot write " + path + ": " + vcg::tri::io::Exporter<IoMesh>::ErrorMsg(err));
+  const int err = vcg::tri::io::ExporterSTL<IoMesh>::Save(m, path.c_str(), true, mask);
+  if (err != 0) throw std::runtime_error("cannot write " + path + ": " + vcg::tri::io::ExporterSTL<IoMesh>::ErrorMsg(err));
+}
+
+}  // namespace
+
+MeshFormat format_of(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == "ply") return MeshFormat::Ply;
+  if (ext == "stl") return MeshFormat::Stl;
+  if (ext == "obj") return MeshFormat::Obj;
+  if (ext == "off") return MeshFormat::Off;
+  throw std::runtime_error(path + ": unknown mesh format (the extension must be .ply, .stl, .obj or .off)");
+}
+
+MeshFile read_mesh(const std::string& path) {
+  format_of(path);  // an unknown extension is refused before the file is opened
+  std::ifstream in(path, std::ios::binary);
+  if (!in) detail::refuse(path, "cannot open the file");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) detail::refuse(path, "reading the file failed");
+  return parse_mesh(path, bytes);
+}
+
+MeshFile parse_mesh(const std::string& path, const std::string& bytes) {
+  switch (format_of(path)) {
+    case MeshFormat::Ply: return detail::read_ply(path, bytes);
+    case MeshFormat::Stl: return read_stl(path, bytes);
+    case MeshFormat::Obj: return detail::read_obj(path, bytes);
+    case MeshFormat::Off: return detail::read_off(path, bytes);
+  }
+  throw std::logic_error("parse_mesh: unhandled format");
+}
+
+void write_mesh(const std::string& path, const MeshFile& source, const Points& V, const FaceExtras& results) {
+  const Surface s{V, source.surface.F};
+  if (V.rows() != source.surface.V.rows()) throw std::invalid_argument("write_mesh: vertex count differs from the source's");
+  if (results.quality.size() != 0 && results.quality.size() != s.F.rows())
+    throw std::invalid_argument("write_mesh: face quality size differs from the face count");
+  if (!results.selected.empty() && results.selected.size() != static_cast<size_t>(s.F.rows()))
+    throw std::invalid_argument("write_mesh: selection size differs from the face count");
+  check_surface(s);
+  switch (format_of(path)) {
+    case MeshFormat::Ply: return detail::write_ply(path, source, V, results);
+    case MeshFormat::Stl: return write_stl(path, s, results);
+    case MeshFormat::Obj: return detail::write_obj(path, source, V);
+    case MeshFormat::Off: return detail::write_off(path, source, V, results);
+  }
+}
+
+Surface load_surface(const std::string& path, FaceExtras* extras) {
+  MeshFile file = read_mesh(path);
+  if (extras) *extras = FaceExtras{file.face.quality, file.face.selected};
+  return std::move(file.surface);
+}
+
+void save_surface(const std::string& path, const Surface& s, const FaceExtras& extras) {
+  MeshFile file;
+  file.surface = s;
+  write_mesh(path, file, s.V, extras);
 }
 
 }  // namespace slim::vcgx

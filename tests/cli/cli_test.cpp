@@ -1,18 +1,15 @@
 // The support-slim CLI as a user runs it: formats in and out, the summary, and one-line errors.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "core/orientation.h"
 #include "core/overhang.h"
 #include "core/slimming.h"
+#include "cli_run.h"
 #include "support/bad_inputs.h"
 #include "support/shapes.h"
 #include "vcg_adapters/mesh_io.h"
@@ -21,34 +18,9 @@ using namespace slim;
 using test::mentions;
 namespace fs = std::filesystem;
 
-namespace {
-struct CliRun {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-CliRun run_cli(const std::string& args) {
-  const fs::path err = fs::temp_directory_path() / ("slim-cli-err-" + std::to_string(::getpid()));
-  const std::string cmd = "'" SLIM_CLI_PATH "' " + args + " 2>'" + err.string() + "'";
-  CliRun r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  fs::remove(err);
-  return r;
-}
-
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("slim-cli-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-}  // namespace
+using test::CliRun;
+using test::run_cli;
+using test::scratch;
 
 TEST(Cli, RoundTripsEveryFormatInTheInputsFrame) {
   const fs::path dir = scratch();
@@ -215,7 +187,7 @@ TEST_P(BadInputCli, WritesASaneMeshOrExitsWithOneLine) {
     // A NaN setting never reaches the core: the flag's own parser names it.
     const bool nan_setting = !c.options.print_direction.allFinite() || std::isnan(c.options.alpha_max_deg) ||
                              std::isnan(c.options.max_deviation_pct);
-    const std::string reason = nan_setting ? "expects a number" : c.cli_refusal.empty() ? c.refusal : c.cli_refusal;
+    const std::string reason = nan_setting ? "expects a number" : c.refusal;
     EXPECT_TRUE(mentions(r.err, reason)) << c.name << ": " << r.err;
     EXPECT_FALSE(fs::exists(out));
   } else {

@@ -2,8 +2,10 @@
 # Drives the real MeshLab GUI under Xvfb the way a user would:
 #   open MESH, Filters -> Smoothing, Fairing and Deformation -> Support Slimming, Apply, Close,
 #   then File -> Export Mesh As (Ctrl+Shift+E) on the current layer.
-# Checks on the way: the filter's dialog is titled "Support Slimming"; the filter logs its result;
-# the export dialog is titled 'Save "<name> slimmed" Layer', i.e. the current layer is the new one.
+# Checks on the way: the filter's dialog is titled "Support Slimming"; its last parameter, the
+# "Optimize the orientation first" checkbox, is on screen whole (see check_last_parameter); the
+# filter logs its result; the export dialog is titled 'Save "<name> slimmed" Layer', i.e. the
+# current layer is the new one.
 # Keeps OUT/dialog.png, OUT/meshlab_gui.png (both layers listed), OUT/layer.ply (the exported new
 # layer) and OUT/meshlab.log; OUT/failure.png when a step fails. Every wait has a timeout.
 #
@@ -18,7 +20,7 @@ if [ -z "${SLIM_GUI_UNDER_XVFB:-}" ]; then  # run ourselves again inside a fresh
 fi
 [ $# -eq 4 ] || { echo "usage: gui_check.sh PREFIX MESH OUT SMOOTHING_INDEX" >&2; exit 2; }
 prefix="$1" mesh="$2" out="$3" index="$4"
-for tool in xdotool import; do
+for tool in xdotool import convert compare; do
   command -v "$tool" >/dev/null 2>&1 || { echo "gui_check: $tool is not installed (scripts/setup.sh)" >&2; exit 1; }
 done
 [ -x "$prefix/bin/meshlab" ] || { echo "gui_check: no meshlab in $prefix/bin" >&2; exit 1; }
@@ -67,6 +69,64 @@ keys() {  # KEY COUNT: press KEY COUNT times
   for ((i = 0; i < $2; i++)); do xdotool key "$1"; sleep 0.05; done
 }
 
+# changed_box A.png B.png: the bounding box (WxH+X+Y) of the pixels that differ; empty if none.
+changed_box() {
+  local box
+  box="$(convert "$1" "$2" -compose difference -composite -colorspace gray -threshold 0 -format '%@' info: 2>/dev/null)"
+  case "$box" in 0x0* | "") echo "" ;; *) echo "$box" ;; esac
+}
+# tick_box WINDOW BACKTABS NAME: BACKTABS times Shift+Tab from the widget with the focus (at first
+# Apply, the dialog's default) focuses a checkbox; Space ticks it; prints the box of the pixels
+# that changed (its check mark), then Space unticks it again.
+tick_box() {
+  xdotool windowfocus --sync "$1"
+  keys shift+Tab "$2"
+  sleep 0.3
+  import -window root "$out/$3-off.png"
+  xdotool key space
+  sleep 0.3
+  import -window root "$out/$3-on.png"
+  xdotool key space
+  sleep 0.3
+  changed_box "$out/$3-off.png" "$out/$3-on.png"
+  rm -f "$out/$3-off.png" "$out/$3-on.png"
+}
+# The last parameter is on screen whole. Qt draws the dialog's widgets into one X window, so the
+# checkbox has no geometry of its own to ask X for. It is found by ticking it with the keyboard (in
+# the dialog's tab order it comes just before the Help, Close and Apply buttons) and seeing which
+# pixels change: its check mark, which must lie inside the dialog's window. The checkbox above it
+# is found the same way; the distance between the two marks is the height of a row. Then, both
+# unticked, the last row's band (a row's height about its mark, as wide as the box and a margin)
+# must look exactly like the row above's: a row cut off by the dialog's edge or covered by its
+# buttons does not (and when the last checkbox is out of sight, ticking it changes nothing).
+check_last_parameter() {
+  # shellcheck disable=SC2034  # getwindowgeometry --shell sets all six
+  local WIDTH HEIGHT X Y SCREEN WINDOW last above w h x y aw ah ax ay pitch differing
+  eval "$(xdotool getwindowgeometry --shell "$1")"
+  echo "dialog geometry: ${WIDTH}x${HEIGHT}+${X}+${Y}"
+  last="$(tick_box "$1" 3 last)"    # Apply -> Close -> Help -> the last parameter
+  above="$(tick_box "$1" 1 above)"  # -> the parameter above it
+  echo "last parameter's check mark: ${last:-none}; the one above: ${above:-none}"
+  [ -n "$last" ] || fail "the last parameter (Optimize the orientation first) is not on screen: ticking it changed nothing"
+  [ -n "$above" ] || fail "ticking 'Preserve selection as rigid features' changed nothing: the keyboard did not reach it"
+  IFS='x+' read -r w h x y <<<"$last"
+  IFS='x+' read -r aw ah ax ay <<<"$above"
+  [ "$x" -ge "$X" ] && [ "$y" -ge "$Y" ] && [ $((x + w)) -le $((X + WIDTH)) ] && [ $((y + h)) -le $((Y + HEIGHT)) ] ||
+    fail "the last parameter's check mark ($last) lies outside the dialog (${WIDTH}x${HEIGHT}+${X}+${Y})"
+  pitch=$((y - ay))
+  [ "$pitch" -gt "$h" ] && [ "$x" -eq "$ax" ] || fail "the check marks found ($last, $above) are not one row apart"
+  keys Tab 4  # -> the last parameter, Help, Close, Apply: the focus where it was
+  sleep 0.3
+  import -window root "$out/rows.png"
+  convert "$out/rows.png" -crop "$((w + 12))x${pitch}+$((x - 6))+$((y + h / 2 - pitch / 2))" +repage "$out/row-last.png"
+  convert "$out/rows.png" -crop "$((w + 12))x${pitch}+$((x - 6))+$((ay + h / 2 - pitch / 2))" +repage "$out/row-above.png"
+  differing="$(compare -metric AE "$out/row-last.png" "$out/row-above.png" null: 2>&1 || true)"
+  rm -f "$out/rows.png" "$out/row-last.png" "$out/row-above.png"
+  echo "last row against the row above: ${differing} pixels differ (band ${pitch} px high)"
+  [ "$differing" = 0 ] || fail "the last parameter's row is cut off: it differs from the row above in $differing pixels"
+  echo "last parameter visible: yes"
+}
+
 "$prefix/bin/meshlab" "$mesh" >"$log" 2>&1 &
 meshlab=$!
 trap 'kill "$meshlab" 2>/dev/null || true; wait "$meshlab" 2>/dev/null || true; rm -rf "$home"' EXIT
@@ -88,6 +148,7 @@ xdotool key Return
 dialog="$(wait_window '^Support Slimming$' 20)" || fail "Filters -> Smoothing, Fairing and Deformation -> item $index did not open the Support Slimming dialog"
 sleep 0.5
 import -window root "$out/dialog.png"
+check_last_parameter "$dialog"
 
 press_button "$dialog" 1  # Apply, with the dialog's defaults
 wait_log 'LOG: [0-9]+ Support Slimming: risky area' 120 || fail "the filter logged no result within 120 s (see $log)"

@@ -1,12 +1,15 @@
 // The real MeshLab GUI (the private prefix's copy, so it loads this build's plugin), driven under
 // Xvfb with xdotool by gui_check.sh: Filters -> Smoothing, Fairing and Deformation -> Support
-// Slimming -> Apply must leave a new "<name> slimmed" layer whose mesh is the deformed input.
+// Slimming -> Apply must leave a new "<name> slimmed" layer whose mesh is the deformed input, and
+// the dialog must show every parameter on the 1280x1024 screen (the last one, found by ticking it,
+// whole and inside the dialog: gui_check.sh's check_last_parameter).
 // Label gui; exclude it with ctest -LE gui.
 #include <gtest/gtest.h>
 
 #include <QApplication>
 #include <QDir>
 
+#include <cstdio>
 #include <filesystem>
 
 #include <common/pluginmanager.h>
@@ -55,6 +58,17 @@ TEST(MeshLabGui, SupportSlimmingFromTheFiltersMenuAddsASlimmedLayer) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string layer_name = fs::path(mesh).filename().string() + " slimmed";
   EXPECT_NE(r.output.find("export dialog: Save \"" + layer_name + "\" Layer"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("last parameter visible: yes"), std::string::npos) << r.output;
+  for (const char* line : {"dialog geometry: ", "last parameter's check mark: "}) {  // for the test's log
+    const size_t from = r.output.find(line);
+    if (from != std::string::npos) std::printf("%s\n", r.output.substr(from, r.output.find('\n', from) - from).c_str());
+  }
+  // The dialog fits on the screen: its window ends above the screen's bottom edge (1024 pixels).
+  const size_t at = r.output.find("dialog geometry: ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  int w = 0, h = 0, x = 0, y = 0;
+  ASSERT_EQ(std::sscanf(r.output.c_str() + at, "dialog geometry: %dx%d+%d+%d", &w, &h, &x, &y), 4) << r.output;
+  EXPECT_LE(y + h, 1024) << r.output;
   EXPECT_GT(fs::file_size(out / "dialog.png"), 10000u);
   EXPECT_GT(fs::file_size(out / "meshlab_gui.png"), 10000u);
 

@@ -1,6 +1,7 @@
-// Every committed fuzz input runs in the ordinary test suite (and under the sanitizers): the seed
-// corpus (the bad-input catalogue as bytes) and the regressions (inputs the fuzzer once crashed
-// on, kept after the fix).
+// Every committed fuzz input runs in the ordinary test suite (and under the sanitizers): for the
+// core, the seed corpus (the bad-input catalogue as bytes) and the regressions (inputs the fuzzer
+// once crashed on, kept after the fix); for the mesh readers, their seed corpus (the bad-file
+// catalogue and well-formed files) and their regressions.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,6 +10,10 @@
 
 #include "fuzz/fuzz_case.h"
 #include "support/bad_inputs.h"
+#ifdef SLIM_FUZZ_READERS
+#include "fuzz/reader_case.h"
+#include "vcg_adapters/mesh_io.h"
+#endif
 
 namespace fs = std::filesystem;
 
@@ -20,9 +25,9 @@ std::vector<std::uint8_t> read_bytes(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-std::vector<std::string> committed_inputs() {
+std::vector<std::string> committed_inputs(std::initializer_list<const char*> dirs) {
   std::vector<std::string> names;
-  for (const char* dir : {"corpus", "regressions"})
+  for (const char* dir : dirs)
     for (const auto& entry : fs::directory_iterator(kFuzzDir / dir))
       if (entry.is_regular_file() && entry.path().filename() != "README.md")
         names.push_back(std::string(dir) + "/" + entry.path().filename().string());
@@ -38,13 +43,14 @@ TEST_P(FuzzInput, RunsSanely) {
   EXPECT_EQ(slim::fuzz::run_fuzz_case(slim::fuzz::decode(bytes.data(), bytes.size())), "") << GetParam();
 }
 
-INSTANTIATE_TEST_SUITE_P(Committed, FuzzInput, ::testing::ValuesIn(committed_inputs()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string name = info.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param;
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Committed, FuzzInput, ::testing::ValuesIn(committed_inputs({"corpus", "regressions"})), test_name);
 
 TEST(FuzzCorpus, HoldsEveryCaseOfTheCatalogue) {
   // Regenerate with: fuzz_corpus_writer tests/fuzz/corpus
@@ -69,3 +75,43 @@ TEST(FuzzCase, DecodesWhatItEncodes) {
   const std::uint8_t one = 8;
   EXPECT_EQ(slim::fuzz::run_fuzz_case(slim::fuzz::decode(&one, 1)), "");
 }
+
+#ifdef SLIM_FUZZ_READERS
+namespace {
+class ReaderFuzzInput : public ::testing::TestWithParam<std::string> {};
+}  // namespace
+
+TEST_P(ReaderFuzzInput, ReadsSanely) {
+  const std::vector<std::uint8_t> bytes = read_bytes(kFuzzDir / GetParam());
+  EXPECT_EQ(slim::fuzz::run_reader_case(bytes.data(), bytes.size()), "") << GetParam();
+}
+
+INSTANTIATE_TEST_SUITE_P(Committed, ReaderFuzzInput,
+                         ::testing::ValuesIn(committed_inputs({"reader_corpus", "reader_regressions"})), test_name);
+
+TEST(ReaderFuzzCorpus, HoldsEverySeed) {
+  // Regenerate with: fuzz_corpus_writer tests/fuzz/corpus tests/fuzz/reader_corpus
+  for (const auto& [name, bytes] : slim::fuzz::reader_seeds()) {
+    const fs::path file = kFuzzDir / "reader_corpus" / name;
+    ASSERT_TRUE(fs::exists(file)) << file;
+    EXPECT_EQ(read_bytes(file), bytes) << file << " is out of date";
+  }
+}
+
+TEST(ReaderFuzzCase, EveryBadFileIsRefusedAndEveryValidSeedReads) {
+  // The seeds are what they say: a bad file is refused, a valid one reads (and run_reader_case,
+  // above, finds both outcomes sane: the valid ones round-trip).
+  const char* const extensions[4] = {"ply", "stl", "obj", "off"};
+  for (const auto& [name, bytes] : slim::fuzz::reader_seeds()) {
+    const std::string file = std::string("seed.") + extensions[bytes.at(0) % 4];
+    const std::string contents(bytes.begin() + 1, bytes.end());
+    if (name.rfind("valid_", 0) == 0) {
+      EXPECT_NO_THROW(slim::vcgx::parse_mesh(file, contents)) << name;
+    } else {
+      EXPECT_THROW(slim::vcgx::parse_mesh(file, contents), std::runtime_error) << name;
+    }
+  }
+  const std::uint8_t empty_stl = 1;
+  EXPECT_EQ(slim::fuzz::run_reader_case(&empty_stl, 1), "");
+}
+#endif

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/overhang.h"
+#include "core/welded_view.h"
 #include "support/shapes.h"
 
 namespace slim::test {
@@ -112,8 +113,7 @@ std::vector<BadInput> bad_inputs() {
   add(refused("coincident_vertices", "three faces whose vertices all sit on one point",
               with_faces(with_vertices(Surface{Points(0, 3), Triangles(0, 3)}, {{5, 5, 5}, {5, 5, 5}, {5, 5, 5}}),
                          {{0, 1, 2}, {0, 2, 1}, {1, 2, 0}}),
-              "zero extent", "check the file"))
-      .cli_refusal = "no faces";
+              "zero extent", "check the file"));
   {
     // A CAD sliver: a needle triangle 40 mm long and 1e-12 mm wide inside the bar (clipping it
     // against the tets loses a share of its area to rounding).
@@ -338,10 +338,11 @@ OrientationResult fast_orientation(const Surface& s, double alpha_max_deg, std::
   OrientationOptions o = with_effort(OrientationEffort::Fast);
   o.alpha_max_deg = static_cast<float>(alpha_max_deg);  // the filter's parameter is a float
   refusal.clear();
+  const WeldedView view = weld_coincident(s);  // the filter computes on the welded view
   try {
-    return optimize_orientation(s, o);
+    return optimize_orientation(view.surface, o);
   } catch (const std::invalid_argument& e) {
-    refusal = e.what();
+    refusal = e.what() + view.vertex_number_note(e.what());
     return {};
   }
 }

@@ -4,6 +4,8 @@
 // CLI tests and the fuzz seed corpus all run these same cases.
 //
 // bad_inputs() -> the catalogue, in a fixed order.
+// bad_files() -> the file-level catalogue (issue 16): malformed mesh files the CLI's readers must
+//   refuse with one line naming the file and what is wrong (bad_files.cpp).
 // slimming_result_problem(input, options, result) -> "" when a result is sane, else what is not:
 //   finite positions, the input's faces, displacements that match the positions, no vertex below
 //   the plate, within the deviation budget, risky area not increased, statistics that re-measure.
@@ -32,9 +34,6 @@ struct BadInput {
   std::string refusal, advice;
   // The plugin refuses before the core is asked (a MeshLab-only rule); same convention.
   std::string plugin_refusal;
-  // The CLI reads the case from a file and welds coincident vertices (dropping the faces that
-  // collapse); when that changes the reason it refuses for, the reason it gives.
-  std::string cli_refusal;
   // Overhang Analysis: empty = it succeeds; else its refusal contains this.
   std::string analysis_refusal;
   bool inside_out = false;     // expected to be detected and computed turned over
@@ -43,6 +42,21 @@ struct BadInput {
 };
 
 std::vector<BadInput> bad_inputs();
+
+// A malformed mesh file. The readers (vcg_adapters/mesh_io.h) refuse it with
+// std::runtime_error("cannot read <path>: <why>"), and the CLI with one line holding that, before
+// they allocate anything for the counts it claims; the CLI tests, the robustness test and the
+// readers' fuzz seed corpus run every one.
+struct BadFile {
+  std::string name;       // an identifier: test names, file names (<name>.<extension>)
+  std::string what;       // one line for people
+  std::string extension;  // ply, stl, obj or off (or another, which no reader takes)
+  std::string bytes;      // the file
+  std::string refusal;    // the reason contains this, compared case-insensitively
+};
+
+std::vector<BadFile> bad_files();
+void PrintTo(const BadFile& f, std::ostream* os);
 
 // gtest prints a parameter through this (its name) instead of its bytes.
 void PrintTo(const BadInput& c, std::ostream* os);
@@ -54,8 +68,8 @@ std::string slimming_result_problem(const Surface& input, const SlimmingOptions&
 // writes NaN and infinite coordinates too ("nan", "inf"). Throws std::runtime_error on failure.
 void write_ascii_ply(const std::string& path, const Surface& s);
 
-// What Print Orientation at its Fast effort should do with `s` at `alpha_max_deg`, by the core:
-// its result; when the core refuses, a default result and the refusal (std::invalid_argument's
+// What Print Orientation at its Fast effort should do with `s` at `alpha_max_deg`, by the core
+// (on the welded view, core/welded_view.h, as the filter computes): its result; when the core refuses, a default result and the refusal (std::invalid_argument's
 // message) in `refusal`, which is empty otherwise.
 OrientationResult fast_orientation(const Surface& s, double alpha_max_deg, std::string& refusal);
 
