@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "core/bend_guard.h"
 #include "core/coherence.h"
 #include "core/step_guards.h"
 #include "core/volume_keeping.h"
@@ -109,8 +108,6 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
     for (const auto& pc : tet_pieces) piece_area_ += pc.second;  // AE is a share of this area
   plate_ = (mesh.V * d).minCoeff();
   volume_target_ = signed_volume(input_);
-  if (coherence_.max_bend_deg > 0.0)
-    bends_ = std::make_unique<BendGuard>(input_, domain_.embedding, coherence_.max_bend_deg);
 }
 
 // Weights: the rest volumes (the paper), with the coherent factors and the features' weight;
@@ -175,16 +172,6 @@ bool SupportSlimmer::guard(Points& proposed, int& held_back, int& features_held,
     const BudgetGuard budget = keep_within_budget(domain_.mesh.V, V_, proposed, budget_, features_->vertex_feature());
     guarded = guarded || budget.moved();
     features_held = budget.groups_held;
-  }
-  if (bends_) {
-    int bent_back = 0;
-    const std::vector<int> bent = bends_->faulty_tets(proposed);
-    if (!bent.empty() &&
-        roll_back_until(V_, proposed, T, features_->vertex_feature(), bent,
-                        [&](const Points& P) { return bends_->faulty_tets(P); }, bent_back)) {
-      guarded = true;
-      held_back += bent_back;
-    }
   }
   const std::vector<int> probe = inverted_tets(proposed, T);
   if (probe.empty()) return guarded;

@@ -36,7 +36,6 @@
 #include <Eigen/Core>
 
 #include "core/arap.h"
-#include "core/bend_guard.h"
 #include "core/checked_surface.h"
 #include "core/embedded_domain.h"
 #include "core/local_step.h"
@@ -75,7 +74,6 @@ class SupportSlimmer {
   LocalStep local_;
   LocalStepState state_;
   std::unique_ptr<RigidFeatures> features_;
-  std::unique_ptr<BendGuard> bends_;
   Eigen::VectorXd weights_;
   std::unique_ptr<ArapSolver> arap_;
   std::vector<std::vector<int>> neighbours_;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/orientation.h"
+#include "core/support_model.h"
 #include "core/overhang.h"
 #include "support/bad_inputs.h"
 #include "support/shapes.h"
@@ -108,9 +109,11 @@ TEST(Orientation, ScoreEqualsTheOverhangRuleFaceByFace) {
 TEST(Orientation, SearchIsNoWorseThanBruteForceOverItsCandidates) {
   // The sweep's binned arithmetic and its hull-walk plate only rank; whatever they rank, the best
   // pose returned must match the exact score of every sphere direction and the pose as given.
+  // (The support model's final choice is off here: SupportModelPicksTheLeastSupportOfTheBest.)
   for (const NamedShape& shape : shapes()) {
     OrientationOptions o;
     o.sphere_candidates = 500;
+    o.support_model_candidates = 0;
     const OrientationResult r = optimize_orientation(shape.surface, o);
     double brute = score_orientation(shape.surface, Eigen::Vector3d::UnitZ(), o).score;
     for (const Eigen::Vector3d& d : fibonacci_sphere(o.sphere_candidates))
@@ -357,5 +360,25 @@ TEST(Orientation, BadInputCatalogueIsOrientedOrRefused) {
     } catch (const std::invalid_argument& e) {
       EXPECT_GT(std::string(e.what()).size(), 20u) << c.name;
     }
+  }
+}
+
+TEST(Orientation, SupportModelPicksTheLeastSupportOfTheBest) {
+  // Step 5: of the best distinct candidates by score, the one the support model says needs the
+  // least support wins (a candidate within 1% + 1 mm³ of it only when its score is better), and
+  // each estimate is the model's own figure for that pose.
+  for (const NamedShape& shape : shapes()) {
+    SCOPED_TRACE(shape.name);
+    OrientationOptions o;
+    const OrientationResult r = optimize_orientation(shape.surface, o);
+    const size_t judged = std::min(r.top.size(), static_cast<size_t>(o.support_model_candidates));
+    ASSERT_GT(judged, 0u);
+    EXPECT_EQ(r.best.direction, r.top.front().direction);
+    SupportModelOptions m;
+    m.print_direction = r.best.direction;
+    ASSERT_GE(r.best.support_estimate, 0.0);  // judged (-1: unmeasurable); the T lying down needs none
+    EXPECT_NEAR(r.best.support_estimate, estimate_support(shape.surface, m).volume_mm3, 1e-9 * r.best.support_estimate);
+    for (size_t k = 1; k < judged; ++k)
+      EXPECT_LE(r.best.support_estimate, r.top[k].support_estimate * 1.01 + 1.0) << k;
   }
 }

@@ -98,10 +98,14 @@ INSTANTIATE_TEST_SUITE_P(Catalogue, BadInputCore, ::testing::ValuesIn(test::bad_
 }  // namespace
 
 TEST(Robustness, ResultDoesNotDependOnScaleOrPosition) {
-  // The same arch at 1e-3 mm, 50 mm and 1e6 mm, and 1e5 mm from the origin: every tolerance is
-  // relative, so the share of risky area left must match.
+  // The same arch at 1e-3 mm, 50 mm and 1e6 mm, and 1e5 mm from the origin: every tolerance of
+  // the optimizer is relative, so the share of risky area left must match. The support model is
+  // not: it counts a slicer's lengths (0.2 mm layers, 2.86 mm cells), so a part's support does not
+  // scale with it, and the default choice of iterate by it is left out here (the shadow volume
+  // chooses); ResultDoesNotDependOnPosition has it in.
   SlimmingOptions o;
   o.max_iterations = 10;
+  o.coherence.choose_by_support_model = false;
   const SlimmingResult base = slim_supports(test::arch(), o);
   ASSERT_LT(base.after.risky_share(), base.before.risky_share());
   for (const auto& [name, scale, shift] : {std::make_tuple("tiny", 2e-5, 0.0), std::make_tuple("huge", 2e4, 0.0),
@@ -113,6 +117,18 @@ TEST(Robustness, ResultDoesNotDependOnScaleOrPosition) {
     EXPECT_EQ(r.iterations, base.iterations) << name;
     EXPECT_NEAR(r.volume_after / r.volume_before, base.volume_after / base.volume_before, 1e-6) << name;
   }
+}
+
+TEST(Robustness, ResultDoesNotDependOnPosition) {
+  // With the defaults, the support model's choice included: its grid is centred on the part's
+  // bounding box and its figure averaged over grid phases, so moving the part changes nothing.
+  const Surface arch = test::refined(test::arch(), 3);
+  const SlimmingResult base = slim_supports(arch, {});
+  ASSERT_LT(base.support_after_mm3, base.support_before_mm3);
+  const SlimmingResult far = slim_supports(test::transformed(arch, Eigen::Matrix3d::Identity(), {1e3, -2e3, 0.0}), {});
+  EXPECT_EQ(far.iterations, base.iterations);
+  EXPECT_NEAR(far.support_after_mm3, base.support_after_mm3, 1e-6 * base.support_before_mm3);
+  EXPECT_NEAR(far.after.risky_share(), base.after.risky_share(), 1e-6);
 }
 
 TEST(Robustness, SignedVolumeKeepsItsDigitsFarFromTheOrigin) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/slimming.h"
+#include "core/support_model.h"
 #include "support/shapes.h"
 
 using namespace slim;
@@ -47,11 +48,16 @@ TEST(Slimming, PaperMethodAlsoHelpsAndCoherentHelpsMore) {
   EXPECT_LT(coherent.after.risky_area, paper.after.risky_area);
 }
 
-// The target of the default method: twice the faithful mode's risky-area reduction at every
-// budget from 2% to 10% (bench/slimming_curve prints the whole table, with the same meshes and
-// iteration limit). On the T the paper's method cuts nothing below 3%, on the mushroom nothing at
-// all; the coherent one must still cut.
-static void expect_twice_the_papers_cut(const Surface& mesh) {
+// What the default method is for: less support, as the support model counts what PrusaSlicer
+// builds (support_model.h), than the paper's method saves, at every budget from 2% to 10%, with the
+// volume kept. On the T and the mushroom the paper's method saves nothing (its bent-up arms and rim
+// lift the overhangs that are left: more support); the coherent one must still save.
+// bench/slicer_frontier.sh measures the same with the real slicers on the corpus.
+namespace {
+double modelled_support(const Surface& s) { return estimate_support(s).volume_mm3; }
+
+void expect_more_support_saved_than_by_the_paper(const Surface& mesh) {
+  const double before = modelled_support(mesh);
   for (double budget : {2.0, 3.0, 5.0, 10.0}) {
     SCOPED_TRACE("budget " + std::to_string(budget) + "%");
     SlimmingOptions o;
@@ -61,32 +67,44 @@ static void expect_twice_the_papers_cut(const Surface& mesh) {
     const SlimmingResult paper = slim_supports(mesh, o);
     o.method = SlimmingMethod::Coherent;
     const SlimmingResult coherent = slim_supports(mesh, o);
-    const double paper_cut = paper.before.risky_area - paper.after.risky_area;
-    const double coherent_cut = coherent.before.risky_area - coherent.after.risky_area;
-    EXPECT_GE(paper_cut, 0.0);
-    EXPECT_GT(coherent_cut, 0.0);
-    EXPECT_GE(coherent_cut, 2.0 * paper_cut);
+    const double paper_saved = before - modelled_support(paper.surface);
+    const double coherent_saved = before - modelled_support(coherent.surface);
+    EXPECT_GT(coherent_saved, 0.02 * before);
+    EXPECT_GT(coherent_saved, paper_saved);
+    // The run's own figures are the model's, of the input and of the surface it returns.
+    EXPECT_DOUBLE_EQ(coherent.support_before_mm3, before);
+    EXPECT_NEAR(coherent.support_after_mm3, before - coherent_saved, 1e-9 * before);
+    EXPECT_NEAR(coherent.volume_after / coherent.volume_before, 1.0, 0.02);  // the volume kept
     for (const IterationStats& st : coherent.history) EXPECT_EQ(st.inverted_tets, 0);
   }
 }
 
-TEST(Slimming, CoherentCutsAtLeastTwiceWhatThePaperCutsOnTheBunny) { expect_twice_the_papers_cut(bunny()); }
-TEST(Slimming, CoherentCutsAtLeastTwiceWhatThePaperCutsOnTheT) {
-  expect_twice_the_papers_cut(test::refined(test::t_shape(), 4));
+}  // namespace
+
+TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheBunny) {
+  expect_more_support_saved_than_by_the_paper(bunny());
 }
-TEST(Slimming, CoherentCutsAtLeastTwiceWhatThePaperCutsOnTheMushroom) {
-  expect_twice_the_papers_cut(test::refined(test::mushroom(), 2));
+TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheT) {
+  expect_more_support_saved_than_by_the_paper(test::refined(test::t_shape(), 4));
 }
-TEST(Slimming, CoherentCutsAtLeastTwiceWhatThePaperCutsOnTheArch) {
-  expect_twice_the_papers_cut(test::refined(test::arch(), 3));
+TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheMushroom) {
+  expect_more_support_saved_than_by_the_paper(test::refined(test::mushroom(), 2));
+}
+TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheArch) {
+  expect_more_support_saved_than_by_the_paper(test::refined(test::arch(), 3));
 }
 
 TEST(Slimming, CoherentInversionGuardHoldsVerticesBackAndGoesOn) {
-  // On the T at 10% the bevels along the arms' edges squeeze the walls above them until a step
-  // would invert tets there. The coherent guard puts those tets' vertices back and carries on,
-  // and later iterates are better: the result comes after the first iteration held back.
+  // On the T at 10% with the earlier settings of the method (10-degree steps, risky tets ten times
+  // stiffer, no volume kept, the shadow volume choosing; the defaults bend it too gently to get
+  // there) the bevels along the arms' edges squeeze the walls above them until a step would invert
+  // tets there. The coherent guard puts those tets' vertices back and carries on, and later
+  // iterates are better: the result comes after the first iteration held back.
   SlimmingOptions o;
   o.max_deviation_pct = 10.0;
+  o.max_step_deg = 10.0;
+  o.coherence.risky_boost = 10.0;
+  o.coherence.keep_volume = o.coherence.choose_by_support_model = false;
   const Surface t = test::refined(test::t_shape(), 4);
   const SlimmingResult r = slim_supports(t, o);
   int first_held = 0;
@@ -112,39 +130,37 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
   // At 45 degrees the flat undersides of the T's arms and the mushroom's cap need 35-45 degrees of
   // rotation, more than a 5% budget allows for the whole underside: bending them up as a body
   // lifts the overhangs that are left, and PrusaSlicer then lays more support (docs/judge.md).
-  // The result is the iterate with the least shadow volume, so such a run (the paper's method at
-  // its default 40 iterations) hands back the input itself, untouched. The coherent method turns
-  // flat overhangs towards their edges instead, and on all four shapes the risky area and the
-  // shadow volume fall clearly.
-  struct Case {
-    const char* name;
-    Surface mesh;
-    bool improves;
-  };
-  const Case cases[] = {{"T", test::refined(test::t_shape(), 3), true},
-                        {"mushroom", test::refined(test::mushroom(), 2), true},
-                        {"arch", test::refined(test::arch(), 3), true},
-                        {"bunny", bunny(), true}};
-  for (const Case& c : cases)
+  // The result is the iterate that needs the least support: by the support model for the default
+  // method, by the shadow volume for the paper's. No iterate may beat it by its own judge, nor the
+  // input; a run that finds none hands back the input itself, untouched.
+  const std::pair<const char*, Surface> cases[] = {{"T", test::refined(test::t_shape(), 3)},
+                                                   {"mushroom", test::refined(test::mushroom(), 2)},
+                                                   {"arch", test::refined(test::arch(), 3)},
+                                                   {"bunny", bunny()}};
+  for (const auto& [name, mesh] : cases)
     for (SlimmingMethod method : {SlimmingMethod::Paper, SlimmingMethod::Coherent}) {
-      SCOPED_TRACE(std::string(c.name) + (method == SlimmingMethod::Paper ? " paper" : " coherent"));
+      SCOPED_TRACE(std::string(name) + (method == SlimmingMethod::Paper ? " paper" : " coherent"));
       SlimmingOptions o;
       o.method = method;
       o.max_deviation_pct = 5.0;
-      const SlimmingResult r = slim_supports(c.mesh, o);
+      const SlimmingResult r = slim_supports(mesh, o);
       EXPECT_GT(r.before.shadow_volume, 0.0);
-      EXPECT_LE(r.after.shadow_volume, r.before.shadow_volume);
       EXPECT_LE(r.after.risky_area, r.before.risky_area);
-      for (const IterationStats& st : r.history) EXPECT_GE(st.shadow_volume, r.after.shadow_volume);
+      if (method == SlimmingMethod::Paper) {
+        EXPECT_LE(r.after.shadow_volume, r.before.shadow_volume);
+        for (const IterationStats& st : r.history) EXPECT_GE(st.shadow_volume, r.after.shadow_volume);
+      } else {
+        ASSERT_GT(r.support_before_mm3, 0.0);
+        EXPECT_NEAR(r.support_after_mm3, modelled_support(r.surface), 1e-9 * r.support_before_mm3);
+        for (const IterationStats& st : r.history)
+          if (st.risky_area <= r.before.risky_area) EXPECT_GE(st.support_estimate, r.support_after_mm3) << st.iteration;
+        EXPECT_LT(r.support_after_mm3, 0.98 * r.support_before_mm3);  // all four save support
+      }
       EXPECT_EQ(r.history.back().inverted_tets, 0);
       EXPECT_GE(r.surface.V.col(2).minCoeff(), -1e-9);  // nothing below the plate
       if (r.iterations == 0) {
-        EXPECT_EQ(r.surface.V, c.mesh.V);  // the input itself, bit for bit
+        EXPECT_EQ(r.surface.V, mesh.V);  // the input itself, bit for bit
         EXPECT_EQ(r.displacement.maxCoeff(), 0.0);
-      }
-      if (c.improves && method == SlimmingMethod::Coherent) {
-        EXPECT_LT(r.after.shadow_volume, 0.8 * r.before.shadow_volume);
-        EXPECT_LT(r.after.risky_area, 0.95 * r.before.risky_area);
       }
     }
 }

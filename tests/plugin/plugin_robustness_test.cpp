@@ -319,7 +319,11 @@ TEST(PluginLayers, DeletedButNotCompactedElementsAreSkipped) {
     EXPECT_NEAR(face.cQ(), expected.quality(f++), 1e-4);
   }
 
-  ASSERT_TRUE(h.apply(kSlimming, md, h.defaults(kSlimming, md))) << h.lastError().toStdString();
+  // The paper's method, which chooses by the shadow volume: on this coarse arch the default method
+  // finds no iterate that the support model says needs less support, and hands the input back.
+  RichParameterList params = h.defaults(kSlimming, md);
+  params.setValue("method", EnumValue(1));
+  ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
   const MeshModel* out = md.mm();
   ASSERT_NE(out, m);
   EXPECT_EQ(out->cm.fn, m->cm.fn);
