@@ -56,6 +56,12 @@ def main():
     cut = 100.0 * (1.0 - after / before) if before > 0 else 0.0
     print(f"slimmed: risky area {before:.6g} -> {after:.6g} mm^2 ({cut:.1f}% less) in {slim['iterations']} "
           f"iterations; the farthest vertex moved {slim['max_displacement']:.4g} mm")
+    if slim.get("support_estimate_before_mm3", 0.0) > 0.0:
+        print(f"support (estimated): {slim['support_estimate_before_mm3']:.6g} -> "
+              f"{slim['support_estimate_after_mm3']:.6g} mm^3 ({slim['support_change_pct']:+.1f}%)")
+    print(f"shape: Hausdorff {slim['hausdorff_mm']:.4g} mm ({slim['hausdorff_pct']:.2f}% of the diagonal), "
+          f"volume {slim['volume_change_pct']:+.2f}%, creases {slim['crease_share_pct']:.2f}% of the edge length; "
+          f"budget {slim['budget_mm']:.4g} mm")
     print(f"saved {args.output}")
 
 

@@ -9,6 +9,7 @@
 #include "core/oriented_slimming.h"
 #include "core/overhang.h"
 #include "core/slimming.h"
+#include "core/slimming_figures.h"
 #include "core/welded_view.h"
 #include "vcg_adapters/surface_adapter.h"
 
@@ -322,6 +323,45 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
                         "only the deformation."));
 }
 
+double bbox_diagonal(const slim::Surface& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
+
+// The run's figures in the log, and every one of them in the outputs (slimming_figures.h's names;
+// the first four keys are those of earlier releases, kept for scripts that read them).
+void log_slimming(FilterRun& run, const slim::SlimmingResult& r, const slim::SlimmingFigures& f, bool orient) {
+  const slim::IterationStats& chosen = r.history[static_cast<size_t>(r.iterations)];  // [0] is the input
+  if (f.support_estimate_before_mm3 > 0.0)
+    run.info(QString::asprintf("Support Slimming: support %.6g -> %.6g mm^3 (%+.1f%%; the support model's estimate of a "
+                               "slicer's support%s)", f.support_estimate_before_mm3, f.support_estimate_after_mm3,
+                               f.support_change_pct, orient ? ", in the print pose" : ""));
+  run.info(QString::asprintf(
+      "Support Slimming: risky area %.6g -> %.6g mm^2 (%.2f%% -> %.2f%% of the surface, %.1f%% less)",
+      r.before.risky_area, r.after.risky_area, 100.0 * r.before.risky_share(), 100.0 * r.after.risky_share(),
+      r.before.risky_area > 0 ? 100.0 * (1.0 - r.after.risky_area / r.before.risky_area) : 0.0));
+  run.info(QString::asprintf("Support Slimming: %d iterations in %.2f s (%s); domain %d vertices, %d tets; solver %s",
+                             r.iterations, r.seconds, r.stop_reason.c_str(), r.domain_vertices, r.domain_tets,
+                             r.solver_backend.empty() ? "none (no iteration ran)" : r.solver_backend.c_str()));
+  run.info(QString::asprintf(
+      "Support Slimming: displacement max %.4g, mean %.4g mm%s; volume %.6g -> %.6g mm^3 (%+.2f%%); "
+      "AE %.2f%%; inverted tets %d",
+      f.max_displacement_mm, f.mean_displacement_mm, orient ? " (the deformation alone, in the print pose)" : "",
+      f.volume_before_mm3, f.volume_after_mm3, f.volume_change_pct, 100.0 * chosen.approximation_error,
+      chosen.inverted_tets));
+  run.info(QString::asprintf("Support Slimming: shape: Hausdorff %.4g mm (%.2f%% of the bbox diagonal), volume %+.2f%%, "
+                             "creases %.2f%% of the edge length (99th percentile of the dihedral change %.2f deg); "
+                             "budget %s",
+                             f.hausdorff_mm, f.hausdorff_pct, f.volume_change_pct, f.crease_share_pct, f.crease_p99_deg,
+                             f.budget_mm > 0.0 ? QString::asprintf("%.4g mm (%.3g%% of the bbox diagonal%s)", f.budget_mm,
+                                                                   f.budget_pct, orient ? " as given" : "")
+                                                     .toUtf8().constData()
+                                               : "none"));
+  if (r.inside_out) run.warning(QString("Support Slimming: ") + kInsideOutNotice);
+  for (const auto& [key, value] : slim::named_figures(f)) run.outputs[key] = value;
+  run.outputs["risky_area_before"] = r.before.risky_area;
+  run.outputs["risky_area_after"] = r.after.risky_area;
+  run.outputs["iterations"] = r.iterations;  // a whole number, as before
+  run.outputs["max_displacement"] = f.max_displacement_mm;
+}
+
 void apply_support_slimming(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
   MeshModel& input = current_triangle_mesh(md);
   slim::SlimmingOptions options = slimming_options(par);
@@ -347,6 +387,7 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
     if (orient) return slim::slim_in_best_pose(surface, options, orientation_options(par.getFloat("alphaMax"), 1));
     slim::OrientedSlimming slimmed;
     slimmed.slimming = slim::slim_supports(surface, options);
+    slimmed.posed = surface;
     return slimmed;
   });
   const slim::SlimmingResult& r = job.slimming;
@@ -356,26 +397,7 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
                    r.after.quality, r.after.risky, &displacement);
   if (orient) log_orientation(run, "Support Slimming", orientation, false);  // slimming notes it below
 
-  const slim::IterationStats& last = r.history.back();
-  run.info(QString::asprintf(
-      "Support Slimming: risky area %.6g -> %.6g mm^2 (%.2f%% -> %.2f%% of the surface, %.1f%% less)",
-      r.before.risky_area, r.after.risky_area, 100.0 * r.before.risky_share(), 100.0 * r.after.risky_share(),
-      r.before.risky_area > 0 ? 100.0 * (1.0 - r.after.risky_area / r.before.risky_area) : 0.0));
-  run.info(QString::asprintf("Support Slimming: %d iterations in %.2f s (%s); domain %d vertices, %d tets; solver %s",
-                             r.iterations, r.seconds, r.stop_reason.c_str(), r.domain_vertices, r.domain_tets,
-                             r.solver_backend.empty() ? "none (no iteration ran)" : r.solver_backend.c_str()));
-  run.info(QString::asprintf(
-      "Support Slimming: displacement max %.4g, mean %.4g mm%s; volume %.6g -> %.6g mm^3 (%+.2f%%); "
-      "AE %.2f%%; inverted tets %d",
-      last.max_displacement, last.mean_displacement, orient ? " (the deformation alone, in the print pose)" : "",
-      r.volume_before, r.volume_after,
-      r.volume_before != 0 ? 100.0 * (r.volume_after / r.volume_before - 1.0) : 0.0,
-      100.0 * last.approximation_error, last.inverted_tets));
-  if (r.inside_out) run.warning(QString("Support Slimming: ") + kInsideOutNotice);
-  run.outputs["risky_area_before"] = r.before.risky_area;
-  run.outputs["risky_area_after"] = r.after.risky_area;
-  run.outputs["iterations"] = r.iterations;
-  run.outputs["max_displacement"] = last.max_displacement;
+  log_slimming(run, r, slim::slimming_figures(job.posed, r, bbox_diagonal(layer.view.surface)), orient);
 }
 
 }  // namespace

@@ -37,4 +37,27 @@ SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& r,
   return f;
 }
 
+std::vector<std::pair<const char*, double>> named_figures(const SlimmingFigures& f) {
+  return {{"support_estimate_before_mm3", f.support_estimate_before_mm3},
+          {"support_estimate_after_mm3", f.support_estimate_after_mm3},
+          {"support_change_pct", f.support_change_pct},
+          {"shadow_volume_before_mm3", f.shadow_volume_before_mm3},
+          {"shadow_volume_after_mm3", f.shadow_volume_after_mm3},
+          {"risky_area_before_mm2", f.risky_area_before_mm2},
+          {"risky_area_after_mm2", f.risky_area_after_mm2},
+          {"volume_before_mm3", f.volume_before_mm3},
+          {"volume_after_mm3", f.volume_after_mm3},
+          {"volume_change_pct", f.volume_change_pct},
+          {"crease_share_pct", f.crease_share_pct},
+          {"crease_p99_deg", f.crease_p99_deg},
+          {"hausdorff_mm", f.hausdorff_mm},
+          {"hausdorff_pct", f.hausdorff_pct},
+          {"max_displacement_mm", f.max_displacement_mm},
+          {"mean_displacement_mm", f.mean_displacement_mm},
+          {"budget_mm", f.budget_mm},
+          {"budget_pct", f.budget_pct},
+          {"iterations", static_cast<double>(f.iterations)},
+          {"seconds", f.seconds}};
+}
+
 }  // namespace slim

@@ -16,6 +16,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/slimming.h"
 #include "core/surface.h"
@@ -37,5 +39,9 @@ struct SlimmingFigures {
 };
 
 SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& result, double reference_diagonal);
+
+// Every figure by name, in the order above: the keys of support-slim's --report and of the
+// Support Slimming filter's outputs (docs/usage.md lists them with their units).
+std::vector<std::pair<const char*, double>> named_figures(const SlimmingFigures& figures);
 
 }  // namespace slim

@@ -1,0 +1,154 @@
+#include "cli_options.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+namespace slim::cli {
+
+namespace {
+
+const char* kUsage = R"(usage: support-slim IN -o OUT [options]
+
+Reshapes a mesh so that it needs less support material when 3D printed (local/global
+minimal-rotation optimizer). Reads and writes PLY, STL, OBJ and OFF. OUT has IN's vertex list and
+face list in IN's order: nothing is welded, dropped or reordered (STL, which stores each
+triangle's corners apart, is welded when read), and IN's vertex colours, texture coordinates,
+vertex quality and selection pass through; vertex normals too, recomputed where a vertex moved.
+The run replaces three face attributes: face quality becomes n.d + sin(alpha_max) (negative =
+still risky; PLY), face colour its ramp (PLY, OFF, STL), and the face selection the still-risky
+faces (PLY). OUT is in the input's frame (no rescaling, no recentring), or with --orient in the
+print pose the search chose. See docs/files-and-attributes.md.
+
+options:
+  -o, --output FILE        where to write the result (required)
+  --angle DEG              self-supporting angle from the vertical, [0, 90)       [45]
+  --dir X,Y,Z              print direction                                     [0,0,1]
+  --plate-tolerance MM     faces this close to the lowest point rest on the plate
+                                                                  [1e-3 of the bbox diagonal]
+  --resolution N           voxel cells along the longest side                      [24]
+  --domain voxel|tetgen    the tetrahedral domain                               [voxel]
+  --method coherent|paper  coherent (default) or the paper's method as written [coherent]
+  --iterations N           iteration limit; 0 embeds and writes back only          [40]
+  --max-deviation PCT      deviation budget, % of the bbox diagonal (0: none)       [5]
+  --max-k K                largest number of K-means proxies per tet                 [8]
+  --features FILE          rigid features: a text file of face ids (0-based)
+  --features-from-mesh     rigid features: the faces selected in IN (PLY face flags)
+  --orient                 first turn the part into the print pose that needs the least support
+                           (estimated), then slim it there; OUT is in that pose, +Z up, resting
+                           on z = 0, and the displacement counts only the deformation
+  --orient-effort fast|normal|thorough
+                           how many directions the orientation search tries         [normal]
+  --oriented-output FILE   with --orient: also write the oriented part before slimming
+  --report FILE.json       also write every figure of the summary as JSON (docs/usage.md)
+  --threads N              OpenMP threads (the result does not depend on it)
+  --quiet                  no progress on stderr
+  -h, --help               this text
+)";
+
+double number(const std::string& flag, const std::string& text) {
+  try {
+    size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  die(flag + " expects a number, got '" + text + "'");
+}
+
+int integer(const std::string& flag, const std::string& text) {
+  const double v = number(flag, text);
+  if (v != std::floor(v) || std::abs(v) > 1e9) die(flag + " expects a whole number, got '" + text + "'");
+  return static_cast<int>(v);
+}
+
+Eigen::Vector3d vector3(const std::string& flag, const std::string& text) {
+  std::stringstream ss(text);
+  std::string part;
+  std::vector<double> v;
+  while (std::getline(ss, part, ',')) v.push_back(number(flag, part));
+  if (v.size() != 3) die(flag + " expects X,Y,Z, got '" + text + "'");
+  return {v[0], v[1], v[2]};
+}
+
+}  // namespace
+
+std::vector<bool> read_face_ids(const std::string& path, long long faces) {
+  std::ifstream in(path);
+  if (!in) die("cannot read the features file " + path);
+  std::vector<bool> marked(static_cast<size_t>(faces), false);
+  long long id = 0;
+  while (in >> id) {
+    if (id < 0 || id >= faces)
+      die("the features file names face " + std::to_string(id) + ", but the mesh has " + std::to_string(faces) + " faces");
+    marked[static_cast<size_t>(id)] = true;
+  }
+  if (!in.eof()) die("the features file " + path + " must hold whole face ids separated by white space");
+  return marked;
+}
+
+
+[[noreturn]] void die(const std::string& reason) {
+  std::cerr << "support-slim: " << reason << "\n";
+  std::exit(1);
+}
+
+CliOptions parse_arguments(const std::vector<std::string>& args) {
+  CliOptions c;
+  SlimmingOptions& o = c.slimming;
+  bool dir_given = false;
+  auto value = [&](size_t& i) -> const std::string& {
+    if (i + 1 >= args.size()) die(args[i] + " needs a value");
+    return args[++i];
+  };
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "-h" || a == "--help") {
+      std::cout << kUsage;
+      std::exit(0);
+    } else if (a == "-o" || a == "--output") c.out = value(i);
+    else if (a == "--angle") o.alpha_max_deg = number(a, value(i));
+    else if (a == "--dir") o.print_direction = vector3(a, value(i)), dir_given = true;
+    else if (a == "--plate-tolerance") o.plate_tolerance = number(a, value(i));
+    else if (a == "--resolution") o.resolution = integer(a, value(i));
+    else if (a == "--domain") {
+      const std::string& v = value(i);
+      if (v == "voxel") o.domain = DomainKind::Voxel;
+      else if (v == "tetgen") o.domain = DomainKind::TetGen;
+      else die("--domain expects voxel or tetgen, got '" + v + "'");
+    } else if (a == "--method") {
+      const std::string& v = value(i);
+      if (v == "coherent") o.method = SlimmingMethod::Coherent;
+      else if (v == "paper") o.method = SlimmingMethod::Paper;
+      else die("--method expects coherent or paper, got '" + v + "'");
+    } else if (a == "--iterations") o.max_iterations = integer(a, value(i));
+    else if (a == "--max-deviation") o.max_deviation_pct = number(a, value(i));
+    else if (a == "--max-k") o.max_k = integer(a, value(i));
+    else if (a == "--features") c.features_file = value(i);
+    else if (a == "--features-from-mesh") c.features_from_mesh = true;
+    else if (a == "--orient") c.orient = true;
+    else if (a == "--orient-effort") {
+      const std::string& v = value(i);
+      if (v == "fast") c.effort = OrientationEffort::Fast;
+      else if (v == "normal") c.effort = OrientationEffort::Normal;
+      else if (v == "thorough") c.effort = OrientationEffort::Thorough;
+      else die("--orient-effort expects fast, normal or thorough, got '" + v + "'");
+    } else if (a == "--oriented-output") c.oriented_out = value(i);
+    else if (a == "--report") c.report = value(i);
+    else if (a == "--threads") o.threads = integer(a, value(i));
+    else if (a == "--quiet") c.quiet = true;
+    else if (!a.empty() && a[0] == '-') die("unknown option " + a + " (see --help)");
+    else if (c.in.empty()) c.in = a;
+    else die("more than one input mesh given: " + c.in + " and " + a);
+  }
+  if (c.in.empty()) die("no input mesh given (see --help)");
+  if (c.out.empty()) die("no output given: use -o OUT");
+  if (c.orient && dir_given) die("--orient chooses the print direction itself: leave out --dir");
+  if (!c.oriented_out.empty() && !c.orient) die("--oriented-output needs --orient");
+
+  return c;
+}
+
+}  // namespace slim::cli

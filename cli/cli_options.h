@@ -1,0 +1,35 @@
+// The command line of support-slim: what the user asked for, parsed and checked.
+//
+//   CliOptions c = parse_arguments(args);   // args: argv[1..]
+//
+// In: the arguments as given. Out: the files, the switches and the core's SlimmingOptions.
+// A bad argument ends the program through die(): exit status 1 and one line on stderr naming the
+// flag and what it expects; -h prints the usage and exits 0.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/orientation.h"
+#include "core/slimming.h"
+
+namespace slim::cli {
+
+struct CliOptions {
+  std::string in, out;              // the input mesh and where the result goes (required)
+  std::string features_file;        // rigid features: face ids, one file
+  std::string oriented_out;         // with --orient: the oriented part before slimming
+  std::string report;               // --report: the figures as JSON
+  bool features_from_mesh = false, quiet = false, orient = false;
+  OrientationEffort effort = OrientationEffort::Normal;
+  SlimmingOptions slimming;
+};
+
+[[noreturn]] void die(const std::string& reason);
+
+CliOptions parse_arguments(const std::vector<std::string>& args);
+
+// The face ids of a features file (white-space separated, 0-based) as a mask over `faces`.
+std::vector<bool> read_face_ids(const std::string& path, long long faces);
+
+}  // namespace slim::cli

@@ -1,0 +1,155 @@
+#include "summary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace slim::cli {
+
+namespace {
+
+// What was read and how it is written back: the file's own lists (indexed formats), or the
+// vertices STL's separate corners were welded into.
+void print_mesh_line(const vcgx::MeshFile& file, const WeldedView& view) {
+  const long long nv = file.surface.V.rows(), nf = file.surface.F.rows();
+  if (file.format == vcgx::MeshFormat::Stl) {
+    std::printf("  mesh            %lld triangles; STL stores each corner apart: %lld corners welded into %lld vertices\n", nf,
+                static_cast<long long>(file.stl_corners), nv);
+  } else {
+    std::printf("  mesh            %lld vertices, %lld faces, written back as read (same lists, same order)\n", nv, nf);
+    if (view.merged() > 0)
+      std::printf("                  %lld vertices repeat an earlier one's position: computed as one, they move together\n",
+                  static_cast<long long>(view.merged()));
+  }
+}
+
+
+void print_orientation(const OrientationResult& orientation, const SlimmingResult& r) {
+  const OrientationCandidate& best = orientation.best;
+  const double turn = std::acos(std::clamp(best.direction.z(), -1.0, 1.0)) * 180.0 / M_PI;
+  std::printf("  orientation     print direction (%.4f, %.4f, %.4f) of the input, turned %.1f deg; %d directions in %.2f s\n",
+              best.direction.x(), best.direction.y(), best.direction.z(), turn, orientation.candidates, orientation.seconds);
+  if (orientation.as_given.support_estimate >= 0.0 && best.support_estimate >= 0.0)
+    std::printf("  support model   %.6g (as given) -> %.6g (oriented) mm^3, the support model's choice of pose\n",
+                orientation.as_given.support_estimate, best.support_estimate);
+  std::printf("  support proxy   %.6g (as given) -> %.6g (oriented) -> %.6g (slimmed) mm^3\n",
+              orientation.as_given.shadow_volume, r.before.shadow_volume, r.after.shadow_volume);
+  std::printf("  risky area      %.6g (as given) -> %.6g (oriented) mm^2\n", orientation.as_given.risky_area, r.before.risky_area);
+  std::printf("  best poses      score = support proxy - %.3g mm x plate contact (mm^3; lower is better)\n",
+              orientation.contact_bonus_height);
+  for (size_t k = 0; k < orientation.top.size() && k < 5; ++k) {
+    const OrientationCandidate& c = orientation.top[k];
+    std::printf("    %zu. score %-11.6g proxy %-11.6g risky %-10.6g contact %-10.6g dir (%.4f, %.4f, %.4f) %s\n", k + 1, c.score,
+                c.shadow_volume, c.risky_area, c.contact_area, c.direction.x(), c.direction.y(), c.direction.z(),
+                c.origin.c_str());
+  }
+  std::printf("    as given: score %.6g\n", orientation.as_given.score);
+}
+
+// The support the slicer builds, as the core's support model estimates it (what the run chose by).
+void print_support(const SlimmingFigures& f, bool oriented) {
+  if (!(f.support_estimate_before_mm3 > 0.0)) return;
+  std::printf("  support         %.6g -> %.6g mm^3 (%+.1f%%; the support model's estimate of a slicer's support%s)\n",
+              f.support_estimate_before_mm3, f.support_estimate_after_mm3, f.support_change_pct,
+              oriented ? ", in the print pose" : "");
+}
+
+// What the shape paid, next to what the budget allowed.
+void print_shape_cost(const SlimmingFigures& f, bool oriented) {
+  std::printf("  shape           Hausdorff %.4g mm (%.2f%% of the bbox diagonal%s), volume %+.2f%%, creases %.2f%% of the\n"
+              "                  edge length (dihedral angle changed > 10 deg; 99th percentile of the change %.2f deg)\n",
+              f.hausdorff_mm, f.hausdorff_pct, oriented ? " as given" : "", f.volume_change_pct, f.crease_share_pct,
+              f.crease_p99_deg);
+  if (f.budget_mm > 0.0)
+    std::printf("  budget          %.4g mm (%.3g%% of the bbox diagonal%s): no vertex moves further\n", f.budget_mm, f.budget_pct,
+                oriented ? " of the part as given" : "");
+  else
+    std::printf("  budget          none\n");
+}
+
+// A JSON number: finite values with 17 significant digits, anything else null.
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream os;
+  os << std::setprecision(17) << v;
+  return os.str();
+}
+
+std::string json_string(const std::string& text) {
+  std::string s = "\"";
+  for (unsigned char ch : text) {
+    if (ch == '"' || ch == '\\') s += '\\', s += static_cast<char>(ch);
+    else if (ch < 0x20) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\u%04x", ch);
+      s += hex;
+    } else s += static_cast<char>(ch);
+  }
+  return s + "\"";
+}
+
+}  // namespace
+
+void print_summary(const RunReport& run) {
+  const SlimmingResult& r = run.job->slimming;
+  const bool orient = run.oriented;
+  std::printf("support-slim: %s -> %s\n", run.in.c_str(), run.out.c_str());
+  print_mesh_line(*run.file, *run.view);
+  print_support(run.figures, orient);
+  if (orient) {
+    print_orientation(run.job->orientation, r);
+  } else {
+    std::printf("  support proxy   %.6g -> %.6g mm^3 (risky faces' footprint x height above the plate)\n",
+                r.before.shadow_volume, r.after.shadow_volume);
+  }
+  const IterationStats& chosen = r.history[static_cast<size_t>(r.iterations)];  // [0] is the input
+  std::printf("  risky area      %.6g -> %.6g mm^2  (%.2f%% -> %.2f%% of the surface, %.1f%% less)\n",
+              r.before.risky_area, r.after.risky_area, 100 * r.before.risky_share(), 100 * r.after.risky_share(),
+              r.before.risky_area > 0 ? 100 * (1 - r.after.risky_area / r.before.risky_area) : 0.0);
+  std::printf("  iterations      %d in %.2f s (%s)\n", r.iterations, r.seconds, r.stop_reason.c_str());
+  std::printf("  displacement    max %.4g mm, mean %.4g mm%s\n", run.figures.max_displacement_mm, run.figures.mean_displacement_mm,
+              orient ? " (the deformation alone, in the print pose)" : "");
+  std::printf("  volume          %.6g -> %.6g mm^3 (%+.2f%%)\n", run.figures.volume_before_mm3, run.figures.volume_after_mm3,
+              run.figures.volume_change_pct);
+  std::printf("  AE              %.2f%%   inverted tets %d\n", 100 * chosen.approximation_error, chosen.inverted_tets);
+  std::printf("  domain          %d vertices, %d tets; solver %s\n", r.domain_vertices, r.domain_tets,
+              r.solver_backend.empty() ? "none (no iteration ran)" : r.solver_backend.c_str());
+  if (r.inside_out)
+    std::printf("  note            the input is inside out (every normal points inwards): it was computed turned\n"
+                "                  over, and %s keeps the input's face orientation\n", run.out.c_str());
+  print_shape_cost(run.figures, orient);
+}
+
+void write_report(const std::string& path, const RunReport& run) {
+  const SlimmingFigures& f = run.figures;
+  const SlimmingResult& r = run.job->slimming;
+  std::vector<std::pair<const char*, double>> numbers = named_figures(f);
+  numbers.insert(numbers.end(), {{"iterations_run", r.iterations_run},
+                                 {"vertices", static_cast<double>(run.file->surface.V.rows())},
+                                 {"faces", static_cast<double>(run.file->surface.F.rows())},
+                                 {"domain_vertices", r.domain_vertices},
+                                 {"domain_tets", r.domain_tets}});
+  std::ostringstream os;
+  os << "{\n  \"input\": " << json_string(run.in) << ",\n  \"output\": " << json_string(run.out)
+     << ",\n  \"oriented\": " << (run.oriented ? "true" : "false") << ",\n  \"stop_reason\": " << json_string(r.stop_reason);
+  if (run.oriented) {
+    const Eigen::Vector3d& d = run.job->orientation.best.direction;
+    os << ",\n  \"print_direction\": [" << json_number(d.x()) << ", " << json_number(d.y()) << ", " << json_number(d.z())
+       << "]";
+  }
+  for (const auto& [key, value] : numbers) os << ",\n  \"" << key << "\": " << json_number(value);
+  os << "\n}\n";
+  std::ofstream file(path);
+  file << os.str();
+  file.close();
+  if (!file) throw std::runtime_error("cannot write the report " + path);
+}
+
+}  // namespace slim::cli

@@ -1,0 +1,88 @@
+// support-slim --report: every figure of the summary as JSON, checked against the files the run
+// wrote and the core's own measures of them (support model, volume, creases, distance).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "cli_run.h"
+#include "core/shape_metrics.h"
+#include "core/support_model.h"
+#include "core/surface_distance.h"
+#include "support/shapes.h"
+#include "vcg_adapters/mesh_io.h"
+
+using namespace slim;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The report's numeric keys (a flat object, one key per line, as the CLI writes it).
+std::map<std::string, double> read_numbers(const fs::path& path, std::string& text) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  text = ss.str();
+  std::map<std::string, double> numbers;
+  const std::regex line("\"([a-z0-9_]+)\": (-?[0-9][0-9.e+-]*)[,\n]");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), line); it != std::sregex_iterator(); ++it)
+    numbers[(*it)[1]] = std::stod((*it)[2]);
+  return numbers;
+}
+
+}  // namespace
+
+TEST(CliReport, FiguresAreThoseOfTheFilesWritten) {
+  const fs::path dir = test::scratch();
+  const fs::path out = dir / "bunny.ply", report = dir / "bunny.json";
+  const test::CliRun r = test::run_cli("'" + test::sample_bunny_path() + "' -o '" + out.string() + "' --report '" +
+                                       report.string() + "' --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string text;
+  const std::map<std::string, double> f = read_numbers(report, text);
+  for (const char* key : {"support_estimate_before_mm3", "support_estimate_after_mm3", "volume_change_pct",
+                          "crease_share_pct", "crease_p99_deg", "hausdorff_pct", "hausdorff_mm", "max_displacement_mm",
+                          "budget_mm", "budget_pct", "risky_area_before_mm2", "risky_area_after_mm2", "iterations"})
+    EXPECT_EQ(f.count(key), 1u) << key << "\n" << text;
+  EXPECT_NE(text.find("\"stop_reason\": \""), std::string::npos) << text;
+
+  const Surface in = test::sample_bunny(), slimmed = vcgx::load_surface(out.string());
+  const double diag = test::bbox_diagonal(in);
+  // The support model's figures, of the input and of the file written (float coordinates in it).
+  EXPECT_NEAR(f.at("support_estimate_before_mm3"), estimate_support(in).volume_mm3, 1e-9 * f.at("support_estimate_before_mm3"));
+  EXPECT_NEAR(f.at("support_estimate_after_mm3"), estimate_support(slimmed).volume_mm3, 1e-3 * f.at("support_estimate_after_mm3"));
+  EXPECT_LT(f.at("support_estimate_after_mm3"), f.at("support_estimate_before_mm3"));
+  // The shape's cost.
+  const ShapeChange shape = shape_change(in, slimmed);
+  EXPECT_NEAR(f.at("volume_change_pct"), shape.volume_change_pct, 1e-3);
+  EXPECT_NEAR(f.at("crease_share_pct"), shape.crease_share_pct, 0.05);
+  EXPECT_NEAR(f.at("hausdorff_mm"), surface_distance(in, slimmed).hausdorff_mm, 1e-3);
+  EXPECT_NEAR(f.at("hausdorff_pct"), 100 * f.at("hausdorff_mm") / diag, 1e-9);
+  const double moved = (slimmed.V - in.V).rowwise().norm().maxCoeff();
+  EXPECT_NEAR(f.at("max_displacement_mm"), moved, 1e-4);
+  // The budget, as given and as a length, and both distances inside it.
+  EXPECT_DOUBLE_EQ(f.at("budget_pct"), 5.0);
+  EXPECT_NEAR(f.at("budget_mm"), 0.05 * diag, 1e-9 * diag);
+  EXPECT_LE(f.at("max_displacement_mm"), f.at("budget_mm") * (1 + 1e-9));
+  EXPECT_LE(f.at("hausdorff_mm"), f.at("budget_mm") * (1 + 1e-6));
+  // The summary says the same.
+  for (const char* line : {"  support         ", "  shape           Hausdorff ", "  budget          "})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  fs::remove_all(dir);
+}
+
+TEST(CliReport, AnUnwritableReportExitsWithOneLine) {
+  const fs::path dir = test::scratch();
+  const test::CliRun r = test::run_cli("'" + test::sample_bunny_path() + "' -o '" + (dir / "b.ply").string() +
+                                       "' --iterations 0 --report '" + (dir / "no/such/dir/r.json").string() + "' --quiet");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("support-slim: cannot write the report"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  fs::remove_all(dir);
+}
