@@ -1,0 +1,131 @@
+#include "filter_parts.h"
+
+#include <vcg/complex/append.h>
+
+namespace slim::plugin {
+
+void add_alpha_max_parameter(RichParameterList& par) {
+  par.addParam(RichFloat("alphaMax", 45.0f, "Self-supporting angle (deg)",
+                         "The largest overhang, measured from the vertical, that prints without support. "
+                         "Faces that lean out further are risky. Must be in [0, 90)."));
+}
+
+void add_print_parameters(const MeshModel& m, RichParameterList& par) {
+  const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
+  par.addParam(meshlab_api::RichDirection(
+      "printDirection", vcg::Point3f(0, 0, 1), "Print direction",
+      "The direction the part grows in while printing (the build plate's normal). It need not be unit length."));
+  add_alpha_max_parameter(par);
+  par.addParam(meshlab_api::RichAbsPerc("plateTolerance", 0.001f * diag, 0.0f, diag,
+                                         "Build plate tolerance",
+                                         "Faces whose three vertices all lie within this distance of the lowest "
+                                         "point along the print direction rest on the build plate and are never "
+                                         "risky."));
+}
+
+slim::OverhangOptions overhang_options(const RichParameterList& par) {
+  slim::OverhangOptions o;
+  const auto d = par.getPoint3m("printDirection");
+  o.print_direction = Eigen::Vector3d(d[0], d[1], d[2]);
+  o.alpha_max_deg = par.getFloat("alphaMax");
+  o.plate_tolerance = par.getAbsPerc("plateTolerance");
+  return o;
+}
+
+// The filter's parameters -> the core's options. Ranges are checked by the core, which says what
+// is wrong in words the log can show.
+slim::SlimmingOptions slimming_options(const RichParameterList& par) {
+  slim::SlimmingOptions o;
+  const slim::OverhangOptions overhang = overhang_options(par);
+  o.print_direction = overhang.print_direction;
+  o.alpha_max_deg = overhang.alpha_max_deg;
+  o.plate_tolerance = overhang.plate_tolerance;
+  o.resolution = par.getInt("resolution");
+  o.domain = par.getEnum("domain") == 1 ? slim::DomainKind::TetGen : slim::DomainKind::Voxel;
+  o.method = par.getEnum("method") == 1 ? slim::SlimmingMethod::Paper : slim::SlimmingMethod::Coherent;
+  o.max_iterations = par.getInt("maxIterations");
+  o.max_deviation_pct = par.getFloat("maxDeviation");
+  o.max_k = par.getInt("maxK");
+  return o;
+}
+
+// The current layer, refused when there is none or it is a point cloud.
+MeshModel& current_triangle_mesh(MeshDocument& md) {
+  MeshModel* m = md.mm();
+  if (m == nullptr) throw FilterFailure("there is no current mesh");
+  if (m->cm.fn == 0) throw FilterFailure("the mesh has no faces; it needs a triangle mesh, not a point cloud");
+  return *m;
+}
+
+const char* const kInsideOutNotice =
+    "the mesh is inside out (closed, with every normal pointing inwards): it was analysed with its faces turned "
+    "over; to fix the layer itself use Filters > Normals, Curvatures and Orientation > Invert Faces Orientation";
+
+const char* const kSearchEffortHelp =
+    "How many print directions the search tries: Fast (1000 directions over the sphere, 4 refined), Normal "
+    "(4000, 8) or Thorough (16000, 16), besides the poses that rest a large flat face or a convex-hull facet "
+    "on the plate.";
+
+slim::OrientationOptions orientation_options(float alpha_max_deg, int effort) {
+  const slim::OrientationEffort level = effort == 0   ? slim::OrientationEffort::Fast
+                                        : effort == 2 ? slim::OrientationEffort::Thorough
+                                                      : slim::OrientationEffort::Normal;
+  slim::OrientationOptions o = slim::with_effort(level);
+  o.alpha_max_deg = alpha_max_deg;
+  return o;
+}
+
+void log_orientation(const FilterRun& run, const QString& filter, const slim::OrientationResult& r, bool note_inside_out) {
+  const slim::OrientationCandidate &best = r.best, &given = r.as_given;
+  const double turn = std::acos(std::clamp(best.direction.z(), -1.0, 1.0)) * 180.0 / M_PI;
+  run.info(filter + QString::asprintf(
+                        ": print direction (%.4f, %.4f, %.4f) of the input, turned %.1f deg onto +Z; %d directions "
+                        "searched in %.2f s",
+                        best.direction.x(), best.direction.y(), best.direction.z(), turn, r.candidates, r.seconds));
+  run.info(filter + QString::asprintf(
+                        ": support proxy (shadow volume: risky faces' footprint x height above the plate) %.6g -> "
+                        "%.6g mm^3; risky area %.6g -> %.6g mm^2; plate contact %.6g -> %.6g mm^2",
+                        given.shadow_volume, best.shadow_volume, given.risky_area, best.risky_area,
+                        given.contact_area, best.contact_area));
+  run.info(filter + QString::asprintf(": best poses (score = proxy - %.3g mm x plate contact, lower is better):",
+                                      r.contact_bonus_height));
+  for (size_t k = 0; k < r.top.size() && k < 5; ++k) {
+    const slim::OrientationCandidate& c = r.top[k];
+    run.info(filter + QString::asprintf(
+                          ":   %zu. score %.6g, proxy %.6g mm^3, risky area %.6g mm^2, contact %.6g mm^2, "
+                          "direction (%.4f, %.4f, %.4f) [%s]",
+                          k + 1, c.score, c.shadow_volume, c.risky_area, c.contact_area, c.direction.x(),
+                          c.direction.y(), c.direction.z(), c.origin.c_str()));
+  }
+  run.info(filter + QString::asprintf(":   as given: score %.6g", given.score));
+  if (r.inside_out && note_inside_out) run.warning(filter + ": " + kInsideOutNotice);
+}
+
+// A copy of `input` as a new layer with the given positions and the overhang results of its pose;
+// removed again if anything fails, so the document is never left half changed.
+MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& suffix, ResultFrame frame,
+                            const slim::Points& V, const Eigen::VectorXd& face_quality, const std::vector<bool>& risky,
+                            const Eigen::VectorXd* vertex_quality) {
+  MeshModel* output = md.addNewMesh(QString(), input.label() + " " + suffix, true);
+  try {
+    output->updateDataMask(&input);
+    vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(output->cm, input.cm);
+    if (frame == ResultFrame::Input) {
+      output->cm.Tr = input.cm.Tr;
+    } else {
+      output->cm.Tr.SetIdentity();
+    }
+    output->updateDataMask(MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR |
+                           (vertex_quality ? int(MeshModel::MM_VERTQUALITY) : 0));
+    slim::vcgx::write_positions(output->cm, V);
+    slim::vcgx::write_face_results(output->cm, face_quality, true, &risky);
+    if (vertex_quality) slim::vcgx::write_vertex_quality(output->cm, *vertex_quality);
+  } catch (...) {
+    meshlab_api::delete_layer(md, output);
+    md.setCurrentMesh(input.id());
+    throw;
+  }
+  return output;
+}
+
+}  // namespace slim::plugin

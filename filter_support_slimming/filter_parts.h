@@ -1,0 +1,83 @@
+// What the plugin's three filters share, and each filter's definition (filters.h's table).
+//
+// Shared: the dialog's print parameters and their translation into the core's options, the current
+// layer as the core sees it (LayerView: live elements in order, coincident vertices merged), the
+// orientation search's options and log, and the result layer (a copy of the input with new
+// positions and the overhang results of its pose). Each filter lives in a file of its own name:
+// overhang_analysis_filter.cpp, print_orientation_filter.cpp, support_slimming_filter.cpp.
+#pragma once
+
+#include <stdexcept>
+#include <vector>
+
+#include <QString>
+
+#include "core/orientation.h"
+#include "core/overhang.h"
+#include "core/slimming.h"
+#include "core/welded_view.h"
+#include "filters.h"
+#include "vcg_adapters/surface_adapter.h"
+
+namespace slim::plugin {
+
+// Each filter's name, help, menu place, dialog and run.
+FilterDefinition overhang_analysis_filter();
+FilterDefinition support_slimming_filter();
+FilterDefinition print_orientation_filter();
+
+// ---- parameters shared by the filters
+void add_alpha_max_parameter(RichParameterList& par);
+// Print direction, alpha_max and the build plate tolerance (fitted to m's size).
+void add_print_parameters(const MeshModel& m, RichParameterList& par);
+slim::OverhangOptions overhang_options(const RichParameterList& par);
+// The filter's parameters -> the core's options. Ranges are checked by the core, which says what
+// is wrong in words the log can show.
+slim::SlimmingOptions slimming_options(const RichParameterList& par);
+
+// The current layer, refused (FilterFailure) when there is none or it is a point cloud.
+MeshModel& current_triangle_mesh(MeshDocument& md);
+
+// The layer as the core sees it: its live vertices and faces in container order, coincident
+// vertices merged (core/welded_view.h), so that faces meeting at a seam share their vertex.
+// Results come back to every vertex of the layer, whose list and order never change.
+struct LayerView {
+  slim::Surface surface;  // the layer's own vertex and face lists
+  slim::WeldedView view;
+  explicit LayerView(const CMeshO& cm) : surface(slim::vcgx::to_surface(cm)), view(slim::weld_coincident(surface)) {}
+  // Runs `compute` on the merged surface; a refusal that names a vertex says which numbering it uses.
+  template <class Compute>
+  auto run(Compute&& compute) const {
+    try {
+      return compute(view.surface);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(e.what() + view.vertex_number_note(e.what()));
+    }
+  }
+  slim::Points positions(const slim::Points& view_after) const { return view.positions_to_input(surface.V, view_after); }
+};
+
+// Logged by the filters when the mesh is inside out (slim::inside_out).
+extern const char* const kInsideOutNotice;
+
+// ---- orientation, shared by Print Orientation and Support Slimming's "optimize the orientation first"
+extern const char* const kSearchEffortHelp;
+// The search's options for an effort index of the dialog (0 Fast, 1 Normal, 2 Thorough).
+slim::OrientationOptions orientation_options(float alpha_max_deg, int effort);
+// The search's findings for the log: the chosen pose, the proxy and risky area before and after,
+// and the five best poses.
+void log_orientation(const FilterRun& run, const QString& filter, const slim::OrientationResult& r, bool note_inside_out);
+
+// Where a result layer's positions live. The filters read a layer's own coordinates, not its
+// transformation matrix: a slimmed part stays in its input's frame, so it keeps the input's
+// matrix and shows where the input shows; a part turned into its print pose is in the plate's
+// frame, +Z up on z = 0, so it gets the identity.
+enum class ResultFrame { Input, PrintPose };
+
+// A copy of `input` as a new layer with the given positions and the overhang results of its pose;
+// removed again if anything fails, so the document is never left half changed.
+MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& suffix, ResultFrame frame,
+                            const slim::Points& V, const Eigen::VectorXd& face_quality, const std::vector<bool>& risky,
+                            const Eigen::VectorXd* vertex_quality);
+
+}  // namespace slim::plugin

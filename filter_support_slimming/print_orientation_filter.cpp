@@ -1,0 +1,61 @@
+#include "filter_parts.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/oriented_slimming.h"
+#include "core/slimming_figures.h"
+
+namespace slim::plugin {
+namespace {
+
+const char* const kPrintOrientationInfo =
+    "Finds the print direction that needs the least support material, and turns the mesh into that pose: "
+    "+Z up, resting on z = 0, as a <b>new layer</b> (the input layer is not changed).<br>"
+    "Each direction is scored by a support estimate, the <b>shadow volume</b>: for every risky face "
+    "(<i>n&middot;d + sin(&alpha;<sub>max</sub>) &lt; 0</i>, not resting on the plate), its area times "
+    "<i>-n&middot;d</i> (its footprint) times the height of its centre above the plate, that is the volume "
+    "of the support column under it. A small bonus for the area lying flat on the plate decides between "
+    "poses that need no support. The search tries directions spread over the whole sphere, the poses that "
+    "rest a large flat face or a convex-hull facet on the plate, and refines the best ones.<br>"
+    "On the result, face quality and colour show the risky faces of the new pose, which are selected. "
+    "The log lists the five best poses, and the risky area and the estimate before and after. Turning "
+    "changes no shape; <i>Support Slimming</i> can then deform the part in its new pose.";
+
+void add_print_orientation_parameters(const MeshModel&, RichParameterList& par) {
+  add_alpha_max_parameter(par);
+  par.addParam(RichEnum("searchEffort", 1, QStringList() << "Fast" << "Normal" << "Thorough", "Search effort",
+                        kSearchEffortHelp));
+  par.addParam(RichBool("applyResult", true, "Apply the result",
+                        "Put the mesh in its best pose as a new layer '<name> oriented'. Off: only report the "
+                        "best poses in the log."));
+}
+
+void apply_print_orientation(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
+  MeshModel& input = current_triangle_mesh(md);
+  const LayerView layer(input.cm);
+  const slim::OrientationResult r = layer.run([&](const slim::Surface& s) {
+    return slim::optimize_orientation(s, orientation_options(par.getFloat("alphaMax"), par.getEnum("searchEffort")));
+  });
+  if (par.getBool("applyResult")) {
+    const slim::Surface posed = slim::apply_orientation(layer.view.surface, r.rotation);
+    const slim::OverhangReport report = slim::print_pose_overhang(posed, r, par.getFloat("alphaMax"));
+    add_result_layer(md, input, "oriented", ResultFrame::PrintPose, layer.positions(posed.V), report.quality,
+                     report.risky, nullptr);
+  }
+  log_orientation(run, "Print Orientation", r, true);
+  run.outputs["shadow_volume_before"] = r.as_given.shadow_volume;
+  run.outputs["shadow_volume_after"] = r.best.shadow_volume;
+  run.outputs["risky_area_before"] = r.as_given.risky_area;
+  run.outputs["risky_area_after"] = r.best.risky_area;
+}
+
+}  // namespace
+
+FilterDefinition print_orientation_filter() {
+  return {"Print Orientation", "generate_print_oriented_mesh", kPrintOrientationInfo, MenuCategory::Normal,
+       MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
+       add_print_orientation_parameters, apply_print_orientation};
+}
+
+}  // namespace slim::plugin
