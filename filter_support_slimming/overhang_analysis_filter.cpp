@@ -67,8 +67,8 @@ void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, Fil
 
 FilterDefinition overhang_analysis_filter() {
   return {"Overhang Analysis", "compute_scalar_by_overhang_per_face", kOverhangAnalysisInfo, MenuCategory::Quality,
-       MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_FACEFLAGSELECT,
-       add_overhang_analysis_parameters, apply_overhang_analysis};
+          MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_FACEFLAGSELECT,
+          add_overhang_analysis_parameters, apply_overhang_analysis};
 }
 
 }  // namespace slim::plugin

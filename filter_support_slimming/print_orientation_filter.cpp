@@ -54,8 +54,8 @@ void apply_print_orientation(MeshDocument& md, const RichParameterList& par, Fil
 
 FilterDefinition print_orientation_filter() {
   return {"Print Orientation", "generate_print_oriented_mesh", kPrintOrientationInfo, MenuCategory::Normal,
-       MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
-       add_print_orientation_parameters, apply_print_orientation};
+          MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
+          add_print_orientation_parameters, apply_print_orientation};
 }
 
 }  // namespace slim::plugin

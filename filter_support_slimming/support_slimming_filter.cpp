@@ -140,8 +140,8 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
 
 FilterDefinition support_slimming_filter() {
   return {"Support Slimming", "generate_support_slimmed_mesh", kSupportSlimmingInfo, MenuCategory::Smoothing,
-       MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
-       add_support_slimming_parameters, apply_support_slimming};
+          MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
+          add_support_slimming_parameters, apply_support_slimming};
 }
 
 }  // namespace slim::plugin

@@ -283,6 +283,11 @@ void judge_by_support(const Surface& oriented, const OrientationOptions& o, Orie
   }
   std::rotate(result.top.begin(), result.top.begin() + static_cast<std::ptrdiff_t>(best),
               result.top.begin() + static_cast<std::ptrdiff_t>(best) + 1);
+  // The pose as given is a candidate too: no turn at all when it needs clearly less support than
+  // every pose the score ranked first (a duck of the corpus: 1.3% more support turned).
+  const double given = result.as_given.support_estimate, turned = result.top.front().support_estimate;
+  if (given >= 0.0 && (turned < 0.0 || given < turned - (0.01 * turned + 1.0)))
+    result.top.insert(result.top.begin(), result.as_given);
   result.best = result.top.front();
   result.rotation = rotation_to_up(result.best.direction);
 }

@@ -110,8 +110,11 @@ std::string iterate(SupportSlimmer& slimmer, const Surface& input, const Slimmin
     r.iterations_run = it;
     IterationStats st = slimmer.step();
     st.iteration = it;
-    if (r.support_before_mm3 > 0.0)
+    if (r.support_before_mm3 > 0.0) {
+      const auto started = std::chrono::steady_clock::now();
       st.support_estimate = support_estimate(Surface{slimmer.surface_positions(), input.F}, o, std::nan(""));
+      r.stage_seconds.support_model += seconds_since(started);
+    }
     r.history.push_back(st);
     const double previous_deficit = r.history[r.history.size() - 2].risky_deficit;
     if (choice.offer(st)) {

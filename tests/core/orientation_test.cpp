@@ -364,9 +364,9 @@ TEST(Orientation, BadInputCatalogueIsOrientedOrRefused) {
 }
 
 TEST(Orientation, SupportModelPicksTheLeastSupportOfTheBest) {
-  // Step 5: of the best distinct candidates by score, the one the support model says needs the
-  // least support wins (a candidate within 1% + 1 mm³ of it only when its score is better), and
-  // each estimate is the model's own figure for that pose.
+  // Step 5: of the best distinct candidates by score and the pose as given, the one the support
+  // model says needs the least support wins (a candidate within 1% + 1 mm³ of it only when its
+  // score is better), and each estimate is the model's own figure for that pose.
   for (const NamedShape& shape : shapes()) {
     SCOPED_TRACE(shape.name);
     OrientationOptions o;
@@ -380,5 +380,8 @@ TEST(Orientation, SupportModelPicksTheLeastSupportOfTheBest) {
     EXPECT_NEAR(r.best.support_estimate, estimate_support(shape.surface, m).volume_mm3, 1e-9 * r.best.support_estimate);
     for (size_t k = 1; k < judged; ++k)
       EXPECT_LE(r.best.support_estimate, r.top[k].support_estimate * 1.01 + 1.0) << k;
+    // The pose as given was judged too, and is kept when it needs clearly less.
+    ASSERT_GE(r.as_given.support_estimate, 0.0);
+    EXPECT_LE(r.best.support_estimate, r.as_given.support_estimate * 1.01 + 1.0);
   }
 }
