@@ -12,9 +12,10 @@
 #   hausdorff     symmetric Hausdorff distance, % of the bbox diagonal (tools/hausdorff.sh; where
 #                 MeshLab's filter fails, the CLI's own figure from --report)
 #   volume        volume change, %;  crease  crease share, % (and its 99th percentile, degrees)
-#   model         the support model's predicted change, %: only when the CLI reports one
-#                 (support-slim --report with support_estimate_before_mm3/_after_mm3); the
-#                 column is left out, never filled with a placeholder, when it does not.
+#   model         the support model's predicted change, %: the CLI's own figures (support-slim
+#                 --report), or for a run that does not measure them (--method paper) the
+#                 model's estimates of both files (bench/support_model_tool); the column is left
+#                 out, never filled with a placeholder, when neither is there.
 # Writes OUT/frontier.tsv (every figure, one row per run), OUT/frontier.md (the table) and, with
 # gnuplot, a plot of support cut against Hausdorff distance per model (--plot, default
 # OUT/frontier.png). Every run is cached in OUT/<model>/<method>_<budget>/: a second call only
@@ -40,7 +41,7 @@ kv() { awk -v k="$2" 'index($0, k "=") == 1 { print substr($0, length(k) + 2); e
 pct() { awk -v b="$1" -v a="$2" 'BEGIN { if (b == "" || a == "" || b == 0) print "n/a"; else printf "%.1f", 100 * (a / b - 1) }'; }
 [ -f "$corpus/manifest.tsv" ] || die "no corpus in $corpus: run scripts/corpus.sh first"
 build="$(cd "$build" && pwd)"; mkdir -p "$out"; out="$(cd "$out" && pwd)"
-slim="$build/cli/support-slim" eval_tool="$build/tools/slim-eval"
+slim="$build/cli/support-slim" eval_tool="$build/tools/slim-eval" model_tool="$build/bench/support_model_tool"
 [ -x "$slim" ] && [ -x "$eval_tool" ] || die "build support-slim and slim-eval first"
 export OPENBLAS_NUM_THREADS=1
 # The support model's figure, when the CLI has one (issue: support-slim --report FILE.json).
@@ -84,6 +85,12 @@ run_one() {  # NAME METHOD BUDGET
   local diag model="" before after
   diag="$(kv "$in_dir/input.txt" diag)"
   before="$(json_number "$dir/report.json" support_estimate_before_mm3)"; after="$(json_number "$dir/report.json" support_estimate_after_mm3)"
+  # A run that does not measure it (the paper's method reports 0): the model estimates both files.
+  if { [ -z "$before" ] || awk -v b="$before" 'BEGIN { exit !(b == 0) }'; } && [ -x "$model_tool" ]; then
+    [ -s "$in_dir/model.txt" ] || "$model_tool" estimate "$in_dir/input.ply" --angle 45 >"$in_dir/model.txt"
+    "$model_tool" estimate "$dir/result.ply" --angle 45 >"$dir/model.txt"
+    before="$(kv "$in_dir/model.txt" volume_mm3)"; after="$(kv "$dir/model.txt" volume_mm3)"
+  fi
   [ -z "$before" ] || [ -z "$after" ] || model="$(pct "$before" "$after")"
   printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$method" "$budget" \
     "$(pct "$(kv "$in_dir/prusa.txt" support_mm3)" "$(kv "$dir/prusa.txt" support_mm3)")" \

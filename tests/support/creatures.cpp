@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <stdexcept>
+#include <type_traits>
 
 // VCG's walker reads a slice cache that -Wmaybe-uninitialized cannot follow once it is inlined
 // here (the value is always set before it is read).
@@ -26,17 +27,26 @@ class McFace : public vcg::Face<McTypes, vcg::face::VertexRef, vcg::face::BitFla
 class McMesh : public vcg::tri::TriMesh<std::vector<McVertex>, std::vector<McFace>> {};
 
 using Volume = vcg::SimpleVolume<vcg::SimpleVoxel<float>>;
-// VCG's TrivialWalker allocates its slice caches in SetExtractionBox (which BuildMesh calls) and
-// never frees them.
+// A slice cache of VCG's TrivialWalker: a raw array in MeshLab 2020.09's VCG, which allocates it
+// in SetExtractionBox (which BuildMesh calls) and never frees it; a std::vector, which frees
+// itself, in 2022.02's and later.
+template <class Cache>
+void free_slice_cache(Cache& cache) {
+  if constexpr (std::is_pointer_v<Cache>) {
+    delete[] cache;
+    cache = nullptr;
+  }
+}
+
 class Walker : public vcg::tri::TrivialWalker<McMesh, Volume> {
  public:
   ~Walker() {
     if (_slice_dimension == 0) return;  // never allocated
-    delete[] _x_cs;
-    delete[] _y_cs;
-    delete[] _z_cs;
-    delete[] _x_ns;
-    delete[] _z_ns;
+    free_slice_cache(_x_cs);
+    free_slice_cache(_y_cs);
+    free_slice_cache(_z_cs);
+    free_slice_cache(_x_ns);
+    free_slice_cache(_z_ns);
   }
 };
 using Cubes = vcg::tri::MarchingCubes<McMesh, Walker>;
