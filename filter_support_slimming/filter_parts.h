@@ -1,4 +1,4 @@
-// What the plugin's three filters share, and each filter's definition (filters.h's table).
+// What the plugin's three filters share, and each filter's parts for filters.h's table.
 //
 // Shared: the dialog's print parameters and their translation into the core's options, the current
 // layer as the core sees it (LayerView: live elements in order, coincident vertices merged), the
@@ -21,10 +21,17 @@
 
 namespace slim::plugin {
 
-// Each filter's name, help, menu place, dialog and run.
-FilterDefinition overhang_analysis_filter();
-FilterDefinition support_slimming_filter();
-FilterDefinition print_orientation_filter();
+// Each filter's help (the top of its dialog), parameters and run, in the file of its name; the
+// table in filters.cpp puts them together.
+extern const char* const kOverhangAnalysisInfo;
+void add_overhang_analysis_parameters(const MeshModel& m, RichParameterList& par);
+void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, FilterRun& run);
+extern const char* const kSupportSlimmingInfo;
+void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par);
+void apply_support_slimming(MeshDocument& md, const RichParameterList& par, FilterRun& run);
+extern const char* const kPrintOrientationInfo;
+void add_print_orientation_parameters(const MeshModel& m, RichParameterList& par);
+void apply_print_orientation(MeshDocument& md, const RichParameterList& par, FilterRun& run);
 
 // ---- parameters shared by the filters
 void add_alpha_max_parameter(RichParameterList& par);
@@ -42,9 +49,11 @@ MeshModel& current_triangle_mesh(MeshDocument& md);
 // vertices merged (core/welded_view.h), so that faces meeting at a seam share their vertex.
 // Results come back to every vertex of the layer, whose list and order never change.
 struct LayerView {
+  MeshModel& model;       // md's current layer, a triangle mesh (current_triangle_mesh)
   slim::Surface surface;  // the layer's own vertex and face lists
   slim::WeldedView view;
-  explicit LayerView(const CMeshO& cm) : surface(slim::vcgx::to_surface(cm)), view(slim::weld_coincident(surface)) {}
+  explicit LayerView(MeshDocument& md)
+      : model(current_triangle_mesh(md)), surface(slim::vcgx::to_surface(model.cm)), view(slim::weld_coincident(surface)) {}
   // Runs `compute` on the merged surface; a refusal that names a vertex says which numbering it uses.
   template <class Compute>
   auto run(Compute&& compute) const {

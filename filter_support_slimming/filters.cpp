@@ -12,9 +12,15 @@ namespace slim::plugin {
 
 const std::vector<FilterDefinition>& filter_definitions() {
   static const std::vector<FilterDefinition> filters = {
-      overhang_analysis_filter(),
-      support_slimming_filter(),
-      print_orientation_filter(),
+      {"Overhang Analysis", "compute_scalar_by_overhang_per_face", kOverhangAnalysisInfo, MenuCategory::Quality,
+       MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_FACEFLAGSELECT,
+       add_overhang_analysis_parameters, apply_overhang_analysis},
+      {"Support Slimming", "generate_support_slimmed_mesh", kSupportSlimmingInfo, MenuCategory::Smoothing,
+       MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
+       add_support_slimming_parameters, apply_support_slimming},
+      {"Print Orientation", "generate_print_oriented_mesh", kPrintOrientationInfo, MenuCategory::Normal,
+       MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
+       add_print_orientation_parameters, apply_print_orientation},
   };
   return filters;
 }

@@ -6,9 +6,9 @@
 // (MeshDocument, RichParameterList, ...) from that version's headers, plus the few calls that
 // changed between versions.
 //
-// Adding a filter: write its parameter list, its apply function and its FilterDefinition in a file
-// of its own name (as overhang_analysis_filter.cpp does; filter_parts.h has what the filters
-// share and declares each definition) and add it to filter_definitions() in filters.cpp. It then
+// Adding a filter: write its help, its parameter list and its apply function in a file of its own
+// name (as overhang_analysis_filter.cpp does; filter_parts.h declares them and has what the
+// filters share) and add one FilterDefinition to filter_definitions() in filters.cpp. It then
 // appears in every API's build, with the parameter checks and error handling of run_filter.
 #pragma once
 

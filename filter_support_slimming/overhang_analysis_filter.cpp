@@ -7,7 +7,6 @@
 #include "core/slimming_figures.h"
 
 namespace slim::plugin {
-namespace {
 
 const char* const kOverhangAnalysisInfo =
     "Finds the faces that would need support material when the mesh is 3D printed along the given "
@@ -29,8 +28,8 @@ void add_overhang_analysis_parameters(const MeshModel& m, RichParameterList& par
 }
 
 void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
-  MeshModel& mm = current_triangle_mesh(md);
-  const LayerView layer(mm.cm);
+  const LayerView layer(md);
+  MeshModel& mm = layer.model;
   // The rule reads the outside from the normals (see slimming.h): an inside-out mesh is analysed
   // turned over; faces that disagree are analysed as they are, with a warning.
   const slim::EdgeTopology edges = slim::edge_topology(layer.view.surface);
@@ -61,14 +60,6 @@ void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, Fil
   // int, not qlonglong: PyMeshLab hands back bool, int, float and arrays, and drops the rest.
   run.outputs["risky_faces"] = static_cast<int>(report.risky_count);
   run.outputs["total_area"] = report.total_area;
-}
-
-}  // namespace
-
-FilterDefinition overhang_analysis_filter() {
-  return {"Overhang Analysis", "compute_scalar_by_overhang_per_face", kOverhangAnalysisInfo, MenuCategory::Quality,
-          MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR | MeshModel::MM_FACEFLAGSELECT,
-          add_overhang_analysis_parameters, apply_overhang_analysis};
 }
 
 }  // namespace slim::plugin

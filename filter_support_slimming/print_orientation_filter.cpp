@@ -7,7 +7,6 @@
 #include "core/slimming_figures.h"
 
 namespace slim::plugin {
-namespace {
 
 const char* const kPrintOrientationInfo =
     "Finds the print direction that needs the least support material, and turns the mesh into that pose: "
@@ -32,15 +31,14 @@ void add_print_orientation_parameters(const MeshModel&, RichParameterList& par) 
 }
 
 void apply_print_orientation(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
-  MeshModel& input = current_triangle_mesh(md);
-  const LayerView layer(input.cm);
+  const LayerView layer(md);
   const slim::OrientationResult r = layer.run([&](const slim::Surface& s) {
     return slim::optimize_orientation(s, orientation_options(par.getFloat("alphaMax"), par.getEnum("searchEffort")));
   });
   if (par.getBool("applyResult")) {
     const slim::Surface posed = slim::apply_orientation(layer.view.surface, r.rotation);
     const slim::OverhangReport report = slim::print_pose_overhang(posed, r, par.getFloat("alphaMax"));
-    add_result_layer(md, input, "oriented", ResultFrame::PrintPose, layer.positions(posed.V), report.quality,
+    add_result_layer(md, layer.model, "oriented", ResultFrame::PrintPose, layer.positions(posed.V), report.quality,
                      report.risky, nullptr);
   }
   log_orientation(run, "Print Orientation", r, true);
@@ -48,14 +46,6 @@ void apply_print_orientation(MeshDocument& md, const RichParameterList& par, Fil
   run.outputs["shadow_volume_after"] = r.best.shadow_volume;
   run.outputs["risky_area_before"] = r.as_given.risky_area;
   run.outputs["risky_area_after"] = r.best.risky_area;
-}
-
-}  // namespace
-
-FilterDefinition print_orientation_filter() {
-  return {"Print Orientation", "generate_print_oriented_mesh", kPrintOrientationInfo, MenuCategory::Normal,
-          MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
-          add_print_orientation_parameters, apply_print_orientation};
 }
 
 }  // namespace slim::plugin

@@ -7,7 +7,6 @@
 #include "core/slimming_figures.h"
 
 namespace slim::plugin {
-namespace {
 
 // Shown at the top of the dialog, always: short, so that every parameter fits below it on a
 // 1280x1024 screen in MeshLab 2020.09. The details are in each parameter's help, which the
@@ -59,6 +58,8 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
                         "only the deformation."));
 }
 
+namespace {
+
 double bbox_diagonal(const slim::Surface& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
 
 // The run's figures in the log, and every one of them in the outputs (slimming_figures.h's names;
@@ -98,8 +99,11 @@ void log_slimming(FilterRun& run, const slim::SlimmingResult& r, const slim::Sli
   run.outputs["max_displacement"] = f.max_displacement_mm;
 }
 
+}  // namespace
+
 void apply_support_slimming(MeshDocument& md, const RichParameterList& par, FilterRun& run) {
-  MeshModel& input = current_triangle_mesh(md);
+  const LayerView layer(md);  // reads the layer; the document is touched only at the end
+  MeshModel& input = layer.model;
   slim::SlimmingOptions options = slimming_options(par);
   if (par.getBool("preserveSelection")) {
     options.rigid_features = slim::vcgx::selected_faces(input.cm);
@@ -117,7 +121,6 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   // Everything is computed before the document is touched: a failure or a cancel leaves no layer.
   // With the orientation first, the part turns rigidly into its print pose and is slimmed there,
   // so the displacement and the volume change are the deformation's alone.
-  const LayerView layer(input.cm);
   const bool orient = par.getBool("optimizeOrientation");
   const slim::OrientedSlimming job = layer.run([&](const slim::Surface& surface) {
     if (orient) return slim::slim_in_best_pose(surface, options, orientation_options(par.getFloat("alphaMax"), 1));
@@ -134,14 +137,6 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   if (orient) log_orientation(run, "Support Slimming", orientation, false);  // slimming notes it below
 
   log_slimming(run, r, slim::slimming_figures(job.posed, r, bbox_diagonal(layer.view.surface)), orient);
-}
-
-}  // namespace
-
-FilterDefinition support_slimming_filter() {
-  return {"Support Slimming", "generate_support_slimmed_mesh", kSupportSlimmingInfo, MenuCategory::Smoothing,
-          MeshModel::MM_NONE,  // the result is a new layer; the input layer is left as it was
-          add_support_slimming_parameters, apply_support_slimming};
 }
 
 }  // namespace slim::plugin
