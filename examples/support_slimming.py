@@ -47,6 +47,9 @@ def main():
             posed = ms.apply_filter("generate_print_oriented_mesh")
             print(f"oriented: risky area {posed['risky_area_before']:.6g} -> {posed['risky_area_after']:.6g} mm^2, "
                   f"support proxy {posed['shadow_volume_before']:.6g} -> {posed['shadow_volume_after']:.6g} mm^3")
+            if posed.get("support_estimate_before_mm3", -1.0) >= 0.0:
+                print(f"oriented: support (estimated) {posed['support_estimate_before_mm3']:.6g} -> "
+                      f"{posed['support_estimate_after_mm3']:.6g} mm^3")
         # Slims the current layer (the posed one after --orient) into a new layer, printing along +Z.
         slim = ms.apply_filter("generate_support_slimmed_mesh")
         ms.save_current_mesh(args.output)

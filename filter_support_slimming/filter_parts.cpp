@@ -82,6 +82,10 @@ void log_orientation(const FilterRun& run, const QString& filter, const slim::Or
                         ": print direction (%.4f, %.4f, %.4f) of the input, turned %.1f deg onto +Z; %d directions "
                         "searched in %.2f s",
                         best.direction.x(), best.direction.y(), best.direction.z(), turn, r.candidates, r.seconds));
+  if (given.support_estimate >= 0.0 && best.support_estimate >= 0.0)
+    run.info(filter + QString::asprintf(": support %.6g -> %.6g mm^3 (the support model's estimate of a slicer's "
+                                        "support, which chose the pose among the best by score)",
+                                        given.support_estimate, best.support_estimate));
   run.info(filter + QString::asprintf(
                         ": support proxy (shadow volume: risky faces' footprint x height above the plate) %.6g -> "
                         "%.6g mm^3; risky area %.6g -> %.6g mm^2; plate contact %.6g -> %.6g mm^2",
