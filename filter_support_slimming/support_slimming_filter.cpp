@@ -34,8 +34,9 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
                         "makes them self-supporting (an exact LP on the Gauss sphere; area-weighted K-means proxies "
                         "when no single rotation exists), then blends the tetrahedra back together with an "
                         "as-rigid-as-possible solve; the base stays on the build plate. Coherent (default): "
-                        "neighbouring rotations agree, risky regions turn as a body, and flat overhangs turn towards "
-                        "their nearest edge. Paper: <i>Direct Computation of Minimal Rotation for Support "
+                        "neighbouring rotations agree, risky regions turn as a body in small steps, flat overhangs turn "
+                        "towards their nearest edge, the volume is kept, and the result is the iterate that needs the "
+                        "least support as a slicer builds it (estimated; the log gives the figure). Paper: <i>Direct Computation of Minimal Rotation for Support "
                         "Slimming</i> as written, for comparison."));
   par.addParam(RichInt("maxIterations", defaults.max_iterations, "Max iterations",
                        "The largest number of local/global iterations; the run ends sooner when the risky area "
