@@ -208,13 +208,18 @@ meshlab_chroot_check() {
 
   [ -f "$chroot_src/data/bunny.ply" ] || "$chroot_src/scripts/setup.sh"
   stage "building the plugin and its tests for MeshLab $version"
-  [ "$clean" = 1 ] && rm -rf --one-file-system "$root$build"
+  # The build is kept for re-runs of the same checkout only: ninja goes by file times, and another
+  # checkout mounted at the same /src (an older commit cloned earlier) would look up to date.
+  local stamp want
+  stamp="$root$build/.slim-source" want="$(cd "$chroot_src" && { pwd; git rev-parse HEAD 2>/dev/null; git diff HEAD 2>/dev/null; } | sha1sum)"
+  if [ "$clean" = 1 ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then rm -rf --one-file-system "$root$build"; fi
   # ccache (its cache in the root's /root/.cache) makes the rebuild of a fresh checkout, all of
   # whose files are new to ninja, cost only the files whose contents changed.
   in_root "cmake -S /src -B $build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSLIM_MESHLAB_API=2022.02 \
              -DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
              -DMESHLAB_SOURCE_DIR=/opt/meshlab-$version -DSLIM_DATA_DIR=/src/data -DSLIM_BUILD_BENCH=OFF >/dev/null
            cmake --build $build -j 2 --target slim_filterplugin_tests"
+  echo "$want" >"$stamp"
   stage_done
 
   stage "ctest -L $label"
