@@ -1,8 +1,11 @@
 // support-slim IN -o OUT [options]: Support Slimming without MeshLab. Thin: parse, load, call the
 // core, save, summarise. Exits 0 on success, 1 with a one-line reason otherwise.
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "cli_options.h"
 #include "core/oriented_slimming.h"
@@ -41,10 +44,20 @@ OrientedSlimming run_job(const cli::CliOptions& c, const vcgx::MeshFile& file, c
 
 double bbox_diagonal(const Surface& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
 
+// A report that could not be written would be found missing only after the run and after OUT was
+// written: its folder is checked first.
+void check_report_folder(const std::string& report) {
+  if (report.empty()) return;
+  const std::filesystem::path folder = std::filesystem::absolute(report).parent_path();
+  if (!std::filesystem::is_directory(folder) || access(folder.c_str(), W_OK) != 0)
+    cli::die("cannot write the report " + report + ": its folder " + folder.string() + " does not exist or is not writable");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   cli::CliOptions c = cli::parse_arguments(std::vector<std::string>(argv + 1, argv + argc));
+  check_report_folder(c.report);
   WeldedView view;  // the surface the core computes on (core/welded_view.h)
   try {
     const vcgx::MeshFile file = vcgx::read_mesh(c.in);

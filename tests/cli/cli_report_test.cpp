@@ -84,5 +84,6 @@ TEST(CliReport, AnUnwritableReportExitsWithOneLine) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("support-slim: cannot write the report"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "b.ply")) << "refused before the run: nothing written";
   fs::remove_all(dir);
 }
