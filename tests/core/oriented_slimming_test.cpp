@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/oriented_slimming.h"
+#include "core/surface_distance.h"
 #include "support/shapes.h"
 
 using namespace slim;
@@ -27,6 +28,8 @@ TEST(OrientedSlimming, TheBudgetIsAShareOfThePartAsGiven) {
     const double moved = (job.slimming.surface.V - job.posed.V).rowwise().norm().maxCoeff();
     EXPECT_LE(moved, budget * (1 + 1e-9)) << pct << "%";
     EXPECT_NEAR(job.slimming.displacement.maxCoeff(), moved, 1e-9 * budget);
+    // And the Hausdorff distance of the slimming, which no vertex's move can exceed.
+    EXPECT_LE(surface_distance(job.posed, job.slimming.surface).hausdorff_mm, budget * (1 + 1e-9)) << pct << "%";
     EXPECT_GT(job.slimming.iterations, 0);
   }
 }
