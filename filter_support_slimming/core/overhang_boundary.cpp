@@ -76,6 +76,7 @@ double OverhangBoundary::nearest(const Eigen::Vector3d& p, Eigen::Vector3d& clos
   const int i = grid_.nearest(p, [&](int s) {
     return (closest_on_segment(p, a_.row(s).transpose(), b_.row(s).transpose()) - p).norm();
   }, best);
+  if (i < 0) return HUGE_VAL;
   closest = closest_on_segment(p, a_.row(i).transpose(), b_.row(i).transpose());
   return best;
 }

@@ -107,7 +107,8 @@ class UniformGrid {
   Items items(size_t cell) const { return {items_.data() + start_[cell], items_.data() + start_[cell + 1]}; }
 
   // The item nearest to p by distance(item) (the exact distance from p to it), with that distance;
-  // -1 and HUGE_VAL when the grid holds none. Cells are visited in shells outwards from p's own,
+  // -1 and HUGE_VAL when the grid holds none (an item whose distance overflows is still an
+  // answer, with that distance). Cells are visited in shells outwards from p's own,
   // until every item not yet seen lies in a cell beyond the nearest found (an item lies within its
   // cells' box); ties go to the lower item. Exact, whatever the cell size.
   template <class Distance>
@@ -130,7 +131,9 @@ class UniformGrid {
             if (ring != shell) continue;  // visited in an earlier shell
             for (int i : items(index(x, y, z))) {
               const double d = distance(i);
-              if (d < best || (d == best && i < best_item)) {
+              // The first item seen is taken whatever its distance: one that overflows to
+              // infinity (or is NaN) must not leave the answer undefined.
+              if (best_item < 0 || d < best || (d == best && i < best_item)) {
                 best = d;
                 best_item = i;
               }
