@@ -79,6 +79,8 @@ Surface print_frame(const Surface& s, const SupportModelOptions& o, double turn)
   return out;
 }
 
+constexpr double kMaxLayers = 50000.0, kMaxCellLayers = 1e9;
+
 PixelGrid raster_grid(const Surface& s, const SupportModelOptions& o) {
   const Eigen::Vector3d lo = s.V.colwise().minCoeff(), hi = s.V.colwise().maxCoeff();
   const double cell = o.grid_spacing, margin = o.first_layer_expansion + 2.0 * cell;
@@ -120,8 +122,14 @@ SupportEstimate estimate_support(const Surface& surface, const SupportModelOptio
     SlicerLayers layers;
     layers.first_height = o.first_layer_height;
     layers.height = o.layer_height;
-    layers.count = static_cast<int>(std::ceil(std::max(0.0, height - o.first_layer_height) / o.layer_height)) + 2;
+    // A part far larger than any printer would take hours to sweep: refused (the optimizer and
+    // the orientation search then judge it by their cruder estimates).
+    const double layer_count = std::ceil(std::max(0.0, height - o.first_layer_height) / o.layer_height) + 2;
+    require(layer_count <= kMaxLayers, "the part is too tall for the support model (more than 50,000 slicer layers)");
+    layers.count = static_cast<int>(layer_count);
     const PixelGrid grid = raster_grid(frame, o);
+    const double cells = static_cast<double>(grid.nx / o.pixels_per_cell) * (grid.ny / o.pixels_per_cell);
+    require(cells * layer_count <= kMaxCellLayers, "the part is too large for the support model (more than 1e9 grid cells times layers)");
     const SupportRaster raster = build_support_raster(frame, grid, rule);
     const GridSupportSweep sweep(raster, layers, settings);
     std::vector<GridSweepResult> phase(offsets.size());

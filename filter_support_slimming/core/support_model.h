@@ -63,7 +63,8 @@
 // memory. Linear in the faces (the raster) plus cells × layers × phases (the sweep).
 //
 // Errors: std::invalid_argument with a readable reason for a surface with no faces, bad indices,
-// non-finite coordinates, zero height, or options out of range.
+// non-finite coordinates, zero height, options out of range, or a part too large to sweep (over
+// 4096 grid cells across, 50,000 layers, or 1e9 cells times layers: metres, not a print).
 #pragma once
 
 #include <vector>
