@@ -54,6 +54,7 @@ struct ArapSolver::Impl {
   void build_incidence();
   SparseMatrix free_matrix() const;
   void check_L(const std::vector<Eigen::Matrix3d>& L) const;
+  Eigen::MatrixXd free_rows(const Points& load) const;  // #free by 3: the load's free rows
 };
 
 void ArapSolver::Impl::check_and_store(const TetMesh& mesh, const Eigen::VectorXd* weights) {
@@ -252,9 +253,9 @@ Eigen::MatrixXd ArapSolver::assemble_rhs(const std::vector<Eigen::Matrix3d>& L, 
 
 Eigen::MatrixXd ArapSolver::back_substitute(const Eigen::MatrixXd& rhs) const {
   const Impl& m = *impl_;
-  if (rhs.rows() != static_cast<Eigen::Index>(m.free_vertices.size()) || rhs.cols() != 3)
-    throw std::invalid_argument("ArapSolver: the right-hand side must be #free by 3");
-  if (m.free_vertices.empty()) return Eigen::MatrixXd(0, 3);
+  if (rhs.rows() != static_cast<Eigen::Index>(m.free_vertices.size()) || (rhs.cols() != 3 && rhs.cols() != 6))
+    throw std::invalid_argument("ArapSolver: the right-hand side must be #free by 3 or by 6");
+  if (m.free_vertices.empty()) return Eigen::MatrixXd(0, rhs.cols());
   Eigen::MatrixXd x;
   if (!m.cholesky->solve(rhs, x))
     throw std::runtime_error("ArapSolver: the global step produced non-finite positions (non-finite L?)");
@@ -269,14 +270,35 @@ Points ArapSolver::solve(const std::vector<Eigen::Matrix3d>& L, const Points& V_
   return V;
 }
 
+Eigen::MatrixXd ArapSolver::Impl::free_rows(const Points& load) const {
+  if (load.rows() != nv) throw std::invalid_argument("ArapSolver: the load must have one row per vertex");
+  Eigen::MatrixXd rhs(static_cast<Eigen::Index>(free_vertices.size()), 3);
+  for (size_t f = 0; f < free_vertices.size(); ++f) rhs.row(static_cast<Eigen::Index>(f)) = load.row(free_vertices[f]);
+  return rhs;
+}
+
 Points ArapSolver::response(const Points& load) const {
   const Impl& m = *impl_;
-  if (load.rows() != m.nv) throw std::invalid_argument("ArapSolver: the load must have one row per vertex");
-  Eigen::MatrixXd rhs(static_cast<Eigen::Index>(m.free_vertices.size()), 3);
-  for (size_t f = 0; f < m.free_vertices.size(); ++f) rhs.row(static_cast<Eigen::Index>(f)) = load.row(m.free_vertices[f]);
-  const Eigen::MatrixXd x = back_substitute(rhs);
+  const Eigen::MatrixXd x = back_substitute(m.free_rows(load));
   Points V = Points::Zero(m.nv, 3);
   for (size_t f = 0; f < m.free_vertices.size(); ++f) V.row(m.free_vertices[f]) = x.row(static_cast<Eigen::Index>(f));
+  return V;
+}
+
+Points ArapSolver::solve_with_response(const std::vector<Eigen::Matrix3d>& L, const Points& V_held, const Points& load,
+                                       Points& response) const {
+  const Impl& m = *impl_;
+  const Eigen::Index nf = static_cast<Eigen::Index>(m.free_vertices.size());
+  Eigen::MatrixXd rhs(nf, 6);
+  rhs.leftCols<3>() = assemble_rhs(L, V_held);
+  rhs.rightCols<3>() = m.free_rows(load);
+  const Eigen::MatrixXd x = back_substitute(rhs);
+  Points V = V_held;
+  response = Points::Zero(m.nv, 3);
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    V.row(m.free_vertices[static_cast<size_t>(f)]) = x.block<1, 3>(f, 0);
+    response.row(m.free_vertices[static_cast<size_t>(f)]) = x.block<1, 3>(f, 3);
+  }
   return V;
 }
 

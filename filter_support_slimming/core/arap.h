@@ -93,9 +93,16 @@ class ArapSolver {
   // constraint's Lagrange step, whose gradient is the load). One back-substitution.
   Points response(const Points& load) const;
 
+  // solve(L, V_held) and response(load) in one back-substitution of six right-hand sides: one
+  // sweep of the factor serves both, which costs little more than one (the sweep is bound by
+  // reading the factor). The same values, bit for bit, as the two calls.
+  Points solve_with_response(const std::vector<Eigen::Matrix3d>& L, const Points& V_held, const Points& load,
+                             Points& response) const;
+
   // The two halves, public so a benchmark can time the bare back-substitution.
   //   assemble_rhs:    #free by 3, K_ff^-1 of it is the free vertices' solution.
-  //   back_substitute: #free by 3 solution in the order of free_vertices().
+  //   back_substitute: #free by k (k = 3 or 6) -> #free by k solution in the order of
+  //                    free_vertices().
   Eigen::MatrixXd assemble_rhs(const std::vector<Eigen::Matrix3d>& L, const Points& V_held) const;
   Eigen::MatrixXd back_substitute(const Eigen::MatrixXd& rhs) const;
 

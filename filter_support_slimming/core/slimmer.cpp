@@ -151,8 +151,13 @@ IterationStats SupportSlimmer::step() {
   Points proposed;
   {
     ScopedSeconds timer(times_.global);
-    proposed = arap_->solve(state_.L, domain_.mesh.V);
-    if (coherence_.keep_volume) keep_volume(*arap_, domain_.embedding, input_.F, volume_target_, proposed);
+    if (coherence_.keep_volume) {
+      Points response;
+      proposed = arap_->solve_with_response(state_.L, domain_.mesh.V, volume_load(domain_.embedding, input_.F, V_), response);
+      keep_volume(domain_.embedding, input_.F, volume_target_, response, proposed);
+    } else {
+      proposed = arap_->solve(state_.L, domain_.mesh.V);
+    }
   }
   ScopedSeconds timer(times_.measure);
   const Points solved = proposed;  // the global step's own minimiser, before the guards move it

@@ -1,4 +1,5 @@
 #include "core/supernodal_solve.h"
+#include "core/supernodal_sweeps.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,134 +20,28 @@ namespace slim {
 
 namespace {
 
-// The lanes are only ever passed between inlined helpers of this file, so the ABI note GCC gives
-// for 32-byte vectors without AVX does not concern any interface.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
-// Three right-hand sides padded to four lanes: one AVX register, or two SSE2 ones.
-typedef double Lanes __attribute__((vector_size(32)));
-
-inline Lanes load(const double* p) {
-  Lanes v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
-}
-inline void store(double* p, Lanes v) { __builtin_memcpy(p, &v, sizeof v); }
-
 // Below this many stored entries of L the two halves run on the calling thread (a thread team
 // costs more than the sweep); the bits are the same either way.
 constexpr double kParallelWork = 1 << 18;
 
-// Forward sweep (L y = b) through supernode s, W its #rows by 4 workspace. The updates to rows
-// below its columns go to X, except rows with a shared slot when `shared` is given: those
-// accumulate there (the caller adds them to X in a fixed order).
-[[gnu::always_inline]] inline void forward_supernode(const SupernodalFactor& f, int s, double* X, double* W,
-                                                     const int* shared_slot, double* shared) {
-  const int c0 = f.first_column[s], nc = f.first_column[s + 1] - c0, nr = f.row_start[s + 1] - f.row_start[s];
-  const int* rows = f.rows + f.row_start[s];
-  const double* block = f.values + f.value_start[s];
-  for (int i = 0; i < nc; ++i) store(W + 4 * i, load(X + 4 * (c0 + i)));
-  for (int i = nc; i < nr; ++i) store(W + 4 * i, Lanes{0.0, 0.0, 0.0, 0.0});
-  constexpr int kPanel = 8;
-  for (int j0 = 0; j0 < nc; j0 += kPanel) {
-    const int width = std::min(kPanel, nc - j0), end = j0 + width;
-    for (int j = j0; j < end; ++j) {  // the panel's own triangle
-      const double* col = block + static_cast<size_t>(j) * nr;
-      const Lanes y = load(W + 4 * j) / col[j];
-      store(W + 4 * j, y);
-      for (int i = j + 1; i < end; ++i) store(W + 4 * i, load(W + 4 * i) - col[i] * y);
-    }
-    if (width == kPanel) {  // every row below the panel, eight columns in one pass
-      const double* l[kPanel];
-      Lanes y[kPanel];
-      for (int k = 0; k < kPanel; ++k) {
-        l[k] = block + static_cast<size_t>(j0 + k) * nr;
-        y[k] = load(W + 4 * (j0 + k));
-      }
-      for (int i = end; i < nr; ++i) {
-        const Lanes a = l[0][i] * y[0] + l[1][i] * y[1] + l[2][i] * y[2] + l[3][i] * y[3];
-        const Lanes b = l[4][i] * y[4] + l[5][i] * y[5] + l[6][i] * y[6] + l[7][i] * y[7];
-        store(W + 4 * i, load(W + 4 * i) - (a + b));
-      }
-    } else {
-      for (int j = j0; j < end; ++j) {
-        const double* col = block + static_cast<size_t>(j) * nr;
-        const Lanes y = load(W + 4 * j);
-        for (int i = end; i < nr; ++i) store(W + 4 * i, load(W + 4 * i) - col[i] * y);
-      }
-    }
+// The sweeps over a list of supernodes (supernodal_sweeps.h), for 4 and 8 lanes, built twice on
+// x86-64: for the baseline (SSE2) and for AVX2 with FMA, the kernels inlined into each. Which one
+// runs is chosen once per solver (SupernodalKernels), so a machine always gives the same bits;
+// two machines of different generations may differ in the last bits.
+#define SLIM_DEFINE_SWEEPS(SUFFIX, N, TARGET)                                                                  \
+  TARGET void forward_range##SUFFIX(const SupernodalFactor& f, int first, int last, double* X, double* W,      \
+                                    const int* shared_slot, double* shared) {                                  \
+    for (int s = first; s <= last; ++s) sweeps::forward_supernode<N>(f, s, X, W, shared_slot, shared);         \
+  }                                                                                                            \
+  TARGET void backward_range##SUFFIX(const SupernodalFactor& f, int first, int last, double* X, double* W) {    \
+    for (int s = last; s >= first; --s) sweeps::backward_supernode<N>(f, s, X, W);                             \
   }
-  for (int i = 0; i < nc; ++i) store(X + 4 * (c0 + i), load(W + 4 * i));
-  for (int i = nc; i < nr; ++i) {
-    const int r = rows[i];
-    double* target = shared && shared_slot[r] >= 0 ? shared + 4 * shared_slot[r] : X + 4 * r;
-    store(target, load(target) + load(W + 4 * i));
-  }
-}
-
-// Backward sweep (L^T x = y) through supernode s: reads the rows below its columns, which the
-// sweep has already finished (they belong to its ancestors), and writes its own columns.
-[[gnu::always_inline]] inline void backward_supernode(const SupernodalFactor& f, int s, double* X, double* W) {
-  const int c0 = f.first_column[s], nc = f.first_column[s + 1] - c0, nr = f.row_start[s + 1] - f.row_start[s];
-  const int* rows = f.rows + f.row_start[s];
-  const double* block = f.values + f.value_start[s];
-  for (int i = 0; i < nc; ++i) store(W + 4 * i, load(X + 4 * (c0 + i)));
-  for (int i = nc; i < nr; ++i) store(W + 4 * i, load(X + 4 * rows[i]));
-  constexpr int kPanel = 8;
-  const int last = nc % kPanel == 0 ? kPanel : nc % kPanel;  // the last panel may be narrower
-  for (int j0 = nc - last; j0 >= 0; j0 -= kPanel) {
-    const int width = std::min(kPanel, nc - j0), end = j0 + width;
-    Lanes sum[kPanel] = {};
-    if (width == kPanel) {
-      const double* l[kPanel];
-      for (int k = 0; k < kPanel; ++k) l[k] = block + static_cast<size_t>(j0 + k) * nr;
-      Lanes s0 = {}, s1 = {}, s2 = {}, s3 = {}, s4 = {}, s5 = {}, s6 = {}, s7 = {};
-      for (int i = end; i < nr; ++i) {
-        const Lanes w = load(W + 4 * i);
-        s0 += l[0][i] * w;
-        s1 += l[1][i] * w;
-        s2 += l[2][i] * w;
-        s3 += l[3][i] * w;
-        s4 += l[4][i] * w;
-        s5 += l[5][i] * w;
-        s6 += l[6][i] * w;
-        s7 += l[7][i] * w;
-      }
-      sum[0] = s0, sum[1] = s1, sum[2] = s2, sum[3] = s3, sum[4] = s4, sum[5] = s5, sum[6] = s6, sum[7] = s7;
-    } else {
-      for (int j = j0; j < end; ++j) {
-        const double* col = block + static_cast<size_t>(j) * nr;
-        Lanes acc = {};
-        for (int i = end; i < nr; ++i) acc += col[i] * load(W + 4 * i);
-        sum[j - j0] = acc;
-      }
-    }
-    for (int j = end - 1; j >= j0; --j) {  // the panel's own triangle
-      const double* col = block + static_cast<size_t>(j) * nr;
-      Lanes acc = sum[j - j0];
-      for (int i = j + 1; i < end; ++i) acc += col[i] * load(W + 4 * i);
-      store(W + 4 * j, (load(W + 4 * j) - acc) / col[j]);
-    }
-  }
-  for (int i = 0; i < nc; ++i) store(X + 4 * (c0 + i), load(W + 4 * i));
-}
-
-// The sweeps over a list of supernodes, built twice on x86-64: for the baseline (SSE2) and for
-// AVX2 with FMA, the kernels above inlined into each. Which one runs is chosen once per solver
-// (SupernodalKernels), so a machine always gives the same bits; two machines of different
-// generations may differ in the last bits.
-#define SLIM_DEFINE_SWEEPS(SUFFIX, TARGET)                                                                  \
-  TARGET void forward_range##SUFFIX(const SupernodalFactor& f, int first, int last, double* X, double* W,   \
-                                    const int* shared_slot, double* shared) {                               \
-    for (int s = first; s <= last; ++s) forward_supernode(f, s, X, W, shared_slot, shared);                 \
-  }                                                                                                         \
-  TARGET void backward_range##SUFFIX(const SupernodalFactor& f, int first, int last, double* X, double* W) { \
-    for (int s = last; s >= first; --s) backward_supernode(f, s, X, W);                                     \
-  }
-SLIM_DEFINE_SWEEPS(_baseline, )
+SLIM_DEFINE_SWEEPS(4_baseline, 4, )
+SLIM_DEFINE_SWEEPS(8_baseline, 8, )
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define SLIM_HAVE_AVX2_KERNELS 1
-SLIM_DEFINE_SWEEPS(_avx2, __attribute__((target("avx2,fma"))))
+SLIM_DEFINE_SWEEPS(4_avx2, 4, __attribute__((target("avx2,fma"))))
+SLIM_DEFINE_SWEEPS(8_avx2, 8, __attribute__((target("avx2,fma"))))
 #endif
 #undef SLIM_DEFINE_SWEEPS
 
@@ -182,8 +77,9 @@ struct SupernodalSolver::Plan {
   double work[2] = {0.0, 0.0}, shared_work = 0.0;
   using Forward = void (*)(const SupernodalFactor&, int, int, double*, double*, const int*, double*);
   using Backward = void (*)(const SupernodalFactor&, int, int, double*, double*);
-  Forward forward = forward_range_baseline;
-  Backward backward = backward_range_baseline;
+  // The sweeps for 4 lanes ([0]: up to four right-hand sides) and for 8 ([1]: up to eight).
+  Forward forward[2] = {forward_range4_baseline, forward_range8_baseline};
+  Backward backward[2] = {backward_range4_baseline, backward_range8_baseline};
 };
 
 namespace {
@@ -331,8 +227,8 @@ SupernodalSolver::SupernodalSolver(const SupernodalFactor& f, SupernodalKernels 
   }
 #ifdef SLIM_HAVE_AVX2_KERNELS
   if (kernels == SupernodalKernels::Auto && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
-    p.forward = forward_range_avx2;
-    p.backward = backward_range_avx2;
+    p.forward[0] = forward_range4_avx2, p.forward[1] = forward_range8_avx2;
+    p.backward[0] = backward_range4_avx2, p.backward[1] = backward_range8_avx2;
   }
 #else
   (void)kernels;
@@ -349,18 +245,27 @@ SupernodalSolver& SupernodalSolver::operator=(SupernodalSolver&&) noexcept = def
 double SupernodalSolver::half_work(int half) const { return plan_->work[half == 0 ? 0 : 1]; }
 double SupernodalSolver::shared_work() const { return plan_->shared_work; }
 const char* SupernodalSolver::kernels() const {
-  return plan_->forward == forward_range_baseline ? "baseline" : "AVX2";
+  return plan_->forward[0] == forward_range4_baseline ? "baseline" : "AVX2";
 }
 
 Eigen::MatrixXd SupernodalSolver::solve(const Eigen::MatrixXd& rhs) const {
+  if (rhs.rows() != f_.n || rhs.cols() < 1 || rhs.cols() > 8)
+    throw std::invalid_argument("SupernodalSolver: the right-hand side must be n by 1 to 8");
+  return rhs.cols() <= 4 ? solve_lanes<4>(rhs) : solve_lanes<8>(rhs);
+}
+
+template <int N>
+Eigen::MatrixXd SupernodalSolver::solve_lanes(const Eigen::MatrixXd& rhs) const {
   const SupernodalFactor& f = f_;
   const Plan& p = *plan_;
-  if (rhs.rows() != f.n || rhs.cols() != 3) throw std::invalid_argument("SupernodalSolver: the right-hand side must be n by 3");
-  std::vector<double> X(4 * static_cast<size_t>(f.n), 0.0);
+  const Plan::Forward forward = p.forward[N == 4 ? 0 : 1];
+  const Plan::Backward backward = p.backward[N == 4 ? 0 : 1];
+  const Eigen::Index columns = rhs.cols();
+  std::vector<double> X(N * static_cast<size_t>(f.n), 0.0);
   for (int k = 0; k < f.n; ++k)
-    for (int c = 0; c < 3; ++c) X[4 * static_cast<size_t>(k) + c] = rhs(f.permutation[k], c);
-  const size_t workspace = 4 * static_cast<size_t>(p.max_rows);
-  std::vector<double> W(2 * workspace), shared(2 * 4 * static_cast<size_t>(p.shared_columns), 0.0);
+    for (Eigen::Index c = 0; c < columns; ++c) X[N * static_cast<size_t>(k) + static_cast<size_t>(c)] = rhs(f.permutation[k], c);
+  const size_t workspace = N * static_cast<size_t>(p.max_rows);
+  std::vector<double> W(2 * workspace), shared(2 * N * static_cast<size_t>(p.shared_columns), 0.0);
   const bool parallel = p.work[0] + p.work[1] >= kParallelWork;
 #ifdef _OPENMP
   const int threads = std::min(2, omp_get_max_threads());
@@ -369,28 +274,28 @@ Eigen::MatrixXd SupernodalSolver::solve(const Eigen::MatrixXd& rhs) const {
 #pragma omp parallel for schedule(static, 1) num_threads(threads) if (parallel)
   for (int half = 0; half < 2; ++half) {
     double* w = W.data() + half * workspace;
-    double* acc = shared.data() + half * 4 * static_cast<size_t>(p.shared_columns);
-    for (const auto& [first, last] : p.halves[half]) p.forward(f, first, last, X.data(), w, p.shared_slot.data(), acc);
+    double* acc = shared.data() + half * N * static_cast<size_t>(p.shared_columns);
+    for (const auto& [first, last] : p.halves[half]) forward(f, first, last, X.data(), w, p.shared_slot.data(), acc);
   }
   for (int half = 0; half < 2; ++half)  // the halves' updates to the shared columns, in order
     for (int s : p.shared)
       for (int c = f.first_column[s]; c < f.first_column[s + 1]; ++c) {
-        const double* a = shared.data() + 4 * (half * static_cast<size_t>(p.shared_columns) + static_cast<size_t>(p.shared_slot[static_cast<size_t>(c)]));
-        store(X.data() + 4 * static_cast<size_t>(c), load(X.data() + 4 * static_cast<size_t>(c)) + load(a));
+        const size_t slot = half * static_cast<size_t>(p.shared_columns) + static_cast<size_t>(p.shared_slot[static_cast<size_t>(c)]);
+        sweeps::add_row<N>(X.data() + N * static_cast<size_t>(c), shared.data() + N * slot);
       }
-  for (int s : p.shared) p.forward(f, s, s, X.data(), W.data(), nullptr, nullptr);
+  for (int s : p.shared) forward(f, s, s, X.data(), W.data(), nullptr, nullptr);
 
-  for (auto s = p.shared.rbegin(); s != p.shared.rend(); ++s) p.backward(f, *s, *s, X.data(), W.data());
+  for (auto s = p.shared.rbegin(); s != p.shared.rend(); ++s) backward(f, *s, *s, X.data(), W.data());
 #pragma omp parallel for schedule(static, 1) num_threads(threads) if (parallel)
   for (int half = 0; half < 2; ++half) {
     double* w = W.data() + half * workspace;
     for (auto range = p.halves[half].rbegin(); range != p.halves[half].rend(); ++range)
-      p.backward(f, range->first, range->second, X.data(), w);
+      backward(f, range->first, range->second, X.data(), w);
   }
 
-  Eigen::MatrixXd x(f.n, 3);
+  Eigen::MatrixXd x(f.n, columns);
   for (int k = 0; k < f.n; ++k)
-    for (int c = 0; c < 3; ++c) x(f.permutation[k], c) = X[4 * static_cast<size_t>(k) + c];
+    for (Eigen::Index c = 0; c < columns; ++c) x(f.permutation[k], c) = X[N * static_cast<size_t>(k) + static_cast<size_t>(c)];
   return x;
 }
 

@@ -1,11 +1,13 @@
 // The global step's back-substitution (arap.h) on a supernodal Cholesky factor L L^T = P K P^T,
-// for the three right-hand sides x, y, z at once.
+// for the three right-hand sides x, y, z at once (or up to eight: the global step and a load's
+// response together, arap.h).
 //
 // Why not the factoring library's own solve: CHOLMOD solves supernode by supernode through BLAS
 // calls sized for many right-hand sides; with three, the calls' overhead and narrow kernels
 // dominate (bunny domain, 55k unknowns: 37-45 ms). Here each supernode's dense block is streamed
 // once per sweep, eight columns at a time against the three right-hand sides held in one 4-wide
-// register (23 ms on one core), and the two sweeps run on two threads where the elimination tree
+// register (23 ms on one core; up to eight right-hand sides in 8 lanes cost little more, the
+// sweep being bound by reading the factor), and the two sweeps run on two threads where the elimination tree
 // splits into independent subtrees.
 //
 // Input: a view of the factor in CHOLMOD's supernodal layout (cholmod_core.h, "supernodal"):
@@ -20,7 +22,7 @@
 //   permutation   n: row k of P K P^T is row permutation[k] of K.
 // The view borrows the arrays; they must outlive the solver.
 //
-// solve(rhs): rhs #n by 3 (any units) -> K^-1 rhs, #n by 3. Deterministic: the schedule (which
+// solve(rhs): rhs #n by k, 1 <= k <= 8 (any units) -> K^-1 rhs, #n by k. Deterministic: the schedule (which
 // subtrees form the two halves) depends on the factor alone, and the halves' contributions to
 // their common ancestors are added in a fixed order, so the bits do not depend on the thread
 // count (a run with one thread does both halves in turn). The kernels are built for the baseline
@@ -74,6 +76,8 @@ class SupernodalSolver {
 
  private:
   struct Plan;
+  template <int N>
+  Eigen::MatrixXd solve_lanes(const Eigen::MatrixXd& rhs) const;  // N = 4 or 8 lanes
   SupernodalFactor f_;
   std::unique_ptr<Plan> plan_;
 };

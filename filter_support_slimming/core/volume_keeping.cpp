@@ -32,10 +32,15 @@ Points embedded_volume_gradient(const Embedding& e, const Triangles& F, const Po
   return g;
 }
 
-double keep_volume(const ArapSolver& arap, const Embedding& e, const Triangles& F, double target, Points& proposed) {
+Points volume_load(const Embedding& e, const Triangles& F, const Points& V_start) {
+  Points surface;
+  embedded_positions(e, V_start, surface);
+  return embedded_volume_gradient(e, F, surface, V_start.rows());
+}
+
+double keep_volume(const Embedding& e, const Triangles& F, double target, const Points& u, Points& proposed) {
   Points surface;
   double volume = volume_at(e, F, proposed, surface);
-  const Points u = arap.response(embedded_volume_gradient(e, F, surface, proposed.rows()));
   const Points base = proposed;
   double lambda = 0.0;
   for (int step = 0; step < 4 && std::abs(volume - target) > 1e-9 * std::abs(target); ++step) {

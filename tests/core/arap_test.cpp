@@ -193,6 +193,38 @@ TEST(Arap, FactorsOnceAndMatchesFreshSolvers) {
     EXPECT_EQ(x.row(static_cast<Eigen::Index>(f)), V1.row(s.free_vertices()[f]));
 }
 
+// Volume keeping solves the global step and its pressure's response in one sweep of the factor:
+// the same bits as the two solves apart (CHOLMOD's own solve, through BLAS, to 1e-12).
+TEST(Arap, SolveWithResponseGivesTheBitsOfSolveAndResponse) {
+  const TetMesh m = test::tet_grid(9, 8, 7, 1.5);
+  const std::vector<int> pins = test::grid_bottom_vertices(9, 8);
+  const std::vector<Matrix3d> L = random_rotations(static_cast<int>(m.T.rows()), 33);
+  const Points load = Points::Random(m.V.rows(), 3);
+  std::vector<ArapOptions> options(1);
+  if (ArapSolver::cholmod_available()) {
+    options.resize(3);
+    options[0].backend = Backend::Cholmod;
+    options[1].backend = Backend::Cholmod;
+    options[1].own_supernodal_solve = false;
+  }
+  options.back().backend = Backend::EigenLDLT;
+  for (const ArapOptions& o : options) {
+    const ArapSolver s(m, pins, o);
+    Points response;
+    const Points V = s.solve_with_response(L, m.V, load, response);
+    const Points apart = s.solve(L, m.V), response_apart = s.response(load);
+    if (o.own_supernodal_solve || o.backend == Backend::EigenLDLT) {
+      EXPECT_TRUE(V == apart) << s.backend_name();
+      EXPECT_TRUE(response == response_apart) << s.backend_name();
+    } else {
+      EXPECT_LE((V - apart).cwiseAbs().maxCoeff(), 1e-12 * apart.cwiseAbs().maxCoeff()) << s.backend_name();
+      EXPECT_LE((response - response_apart).cwiseAbs().maxCoeff(), 1e-12 * response_apart.cwiseAbs().maxCoeff());
+    }
+    EXPECT_GT(response.cwiseAbs().maxCoeff(), 0.0);
+    for (int v : pins) EXPECT_TRUE(response.row(v).isZero(0.0) && V.row(v) == m.V.row(v));
+  }
+}
+
 TEST(Arap, CustomWeightsScaleTheEnergyNotTheMinimiser) {
   const TetMesh m = small_grid();
   const ArapSolver by_volume(m, plate());
