@@ -11,8 +11,10 @@
 // the result. (Bending a T's arms or a mushroom's rim can shrink the risky area while the
 // overhangs left move higher and need more support; and the slicer closes small gaps in an
 // overhang's footprint, so cutting risky area can save nothing: the support decides.)
-// In: the input's statistics (iteration 0), then each iterate's (risky_area mm², support_estimate
-// or shadow_volume mm³). Out: offer() is true when the iterate is the best so far.
+// An iterate whose crease share exceeds max_crease_share_pct (when > 0) never qualifies either.
+// In: the input's statistics (iteration 0) and the crease limit (%), then each iterate's
+// (risky_area mm², support_estimate or shadow_volume mm³, crease_share_pct). Out: offer() is true
+// when the iterate is the best so far.
 #pragma once
 
 #include <cmath>
@@ -23,13 +25,14 @@ namespace slim {
 
 class IterateChoice {
  public:
-  explicit IterateChoice(const IterationStats& input)
-      : by_model_(input.support_estimate > 0.0), input_risky_(input.risky_area), best_support_(support(input)),
-        best_risky_(input.risky_area) {}
+  explicit IterateChoice(const IterationStats& input, double max_crease_share_pct = 0.0)
+      : by_model_(input.support_estimate > 0.0), max_crease_(max_crease_share_pct), input_risky_(input.risky_area),
+        best_support_(support(input)), best_risky_(input.risky_area) {}
 
   bool offer(const IterationStats& s) {
     // An iterate the model could not measure (NaN) never qualifies.
-    const bool qualifies = s.risky_area <= input_risky_ && !(by_model_ && std::isnan(s.support_estimate));
+    const bool qualifies = s.risky_area <= input_risky_ && !(by_model_ && std::isnan(s.support_estimate)) &&
+                           !(max_crease_ > 0.0 && s.crease_share_pct > max_crease_);
     const double need = support(s);
     if (!qualifies || !(need < best_support_ || (need == best_support_ && s.risky_area <= best_risky_))) return false;
     best_support_ = need;
@@ -41,6 +44,7 @@ class IterateChoice {
   double support(const IterationStats& s) const { return by_model_ ? s.support_estimate : s.shadow_volume; }
 
   bool by_model_;
+  double max_crease_;
   double input_risky_, best_support_, best_risky_;
 };
 

@@ -99,6 +99,57 @@ std::vector<DihedralEdge> dihedral_edges(const Surface& s) {
   return out;
 }
 
+CreaseMeter::CreaseMeter(const Surface& input, const ShapeChangeOptions& options)
+    : F_(input.F), vertices_(input.V.rows()), options_(options), edges_(dihedral_edges(input)) {
+  if (!(options.crease_threshold_deg >= 0.0 && options.crease_threshold_deg < 180.0))
+    throw std::invalid_argument("shape change: the crease threshold must lie in [0, 180) degrees");
+  length_.reserve(edges_.size());
+  for (const DihedralEdge& e : edges_) length_.push_back((input.V.row(e.v1) - input.V.row(e.v0)).norm());
+}
+
+void CreaseMeter::changes(const Points& V, std::vector<double>& change, std::vector<char>& measured) const {
+  if (V.rows() != vertices_)
+    throw std::invalid_argument("shape change: the input has " + std::to_string(vertices_) + " vertices, the result " +
+                                std::to_string(V.rows()) + ": not the same mesh");
+  const Surface result{V, F_};
+  const Points n = face_normals(result);
+  change.assign(edges_.size(), 0.0);
+  measured.assign(edges_.size(), 0);
+  for (size_t k = 0; k < edges_.size(); ++k) {
+    const DihedralEdge& e = edges_[k];
+    if (!has_area(n, e.f0) || !has_area(n, e.f1)) continue;
+    const double angle = edge_angle(result, n, EdgePair{e.v0, e.v1, e.f0, e.f1});
+    change[k] = std::abs(std::remainder(angle - e.angle_deg, 360.0));
+    measured[k] = 1;
+  }
+}
+
+void CreaseMeter::measure(const Points& V, ShapeChange& out) const {
+  std::vector<double> change, length;
+  std::vector<char> measured;
+  changes(V, change, measured);
+  double creased = 0.0, total = 0.0;
+  out.max_crease_deg = 0.0;
+  for (size_t k = 0; k < edges_.size(); ++k) {
+    if (!measured[k]) continue;
+    change[length.size()] = change[k];
+    length.push_back(length_[k]);
+    total += length_[k];
+    if (change[k] > options_.crease_threshold_deg) creased += length_[k];
+    out.max_crease_deg = std::max(out.max_crease_deg, change[k]);
+  }
+  change.resize(length.size());
+  out.interior_edges = static_cast<Eigen::Index>(length.size());
+  out.crease_share_pct = total > 0.0 ? 100.0 * creased / total : 0.0;
+  out.crease_p99_deg = weighted_quantile(change, length, 0.99);
+}
+
+double CreaseMeter::share_pct(const Points& V) const {
+  ShapeChange out;
+  measure(V, out);
+  return out.crease_share_pct;
+}
+
 ShapeChange shape_change(const Surface& input, const Surface& result, const ShapeChangeOptions& options) {
   check_surface(input);
   check_surface(result);
@@ -107,31 +158,13 @@ ShapeChange shape_change(const Surface& input, const Surface& result, const Shap
                                 std::to_string(result.V.rows()) + ": not the same mesh");
   if (input.F.rows() != result.F.rows() || input.F != result.F)
     throw std::invalid_argument("shape change: the input and the result do not have the same faces");
-  if (!(options.crease_threshold_deg >= 0.0 && options.crease_threshold_deg < 180.0))
-    throw std::invalid_argument("shape change: the crease threshold must lie in [0, 180) degrees");
-
+  const CreaseMeter meter(input, options);
   ShapeChange out;
   out.volume_input = signed_volume(input);
   out.volume_result = signed_volume(result);
   out.volume_defined = out.volume_input != 0.0 && std::isfinite(out.volume_input);
   if (out.volume_defined) out.volume_change_pct = 100.0 * (out.volume_result / out.volume_input - 1.0);
-
-  const Points n_in = face_normals(input), n_out = face_normals(result);
-  std::vector<double> change, length;
-  double creased = 0.0, total = 0.0;
-  for (const EdgePair& e : interior_manifold_edges(input.F)) {
-    if (!has_area(n_in, e.f0) || !has_area(n_in, e.f1) || !has_area(n_out, e.f0) || !has_area(n_out, e.f1)) continue;
-    const double d = std::abs(std::remainder(edge_angle(result, n_out, e) - edge_angle(input, n_in, e), 360.0));
-    const double len = (input.V.row(e.v1) - input.V.row(e.v0)).norm();
-    change.push_back(d);
-    length.push_back(len);
-    total += len;
-    if (d > options.crease_threshold_deg) creased += len;
-    out.max_crease_deg = std::max(out.max_crease_deg, d);
-  }
-  out.interior_edges = static_cast<Eigen::Index>(change.size());
-  if (total > 0.0) out.crease_share_pct = 100.0 * creased / total;
-  out.crease_p99_deg = weighted_quantile(change, length, 0.99);
+  meter.measure(result.V, out);
   return out;
 }
 

@@ -23,7 +23,8 @@
 // are the input's: the weight is what the designer drew, not what the deformation made of it.
 //
 // A rigid motion or a uniform scale changes no dihedral angle (crease share 0); a scale by s
-// changes the volume by 100 (s^3 - 1) %. Cost: O(#F log #F) (one sort of the edges).
+// changes the volume by 100 (s^3 - 1) %. Cost: O(#F log #F) (one sort of the edges; CreaseMeter
+// below sorts once for many results).
 // Throws std::invalid_argument when the two surfaces do not share F, have different vertex
 // counts, or fail check_surface().
 #pragma once
@@ -51,8 +52,6 @@ struct ShapeChange {
   Eigen::Index interior_edges = 0; // interior manifold edges measured
 };
 
-ShapeChange shape_change(const Surface& input, const Surface& result, const ShapeChangeOptions& options = {});
-
 // Per interior manifold edge of `s`: the two vertices (lower id first), its two faces (the one
 // running from the lower to the higher vertex first) and its signed dihedral angle (degrees).
 // Edges on a zero-area face are left out. Used by shape_change() and its tests.
@@ -61,5 +60,33 @@ struct DihedralEdge {
   double angle_deg;
 };
 std::vector<DihedralEdge> dihedral_edges(const Surface& s);
+
+ShapeChange shape_change(const Surface& input, const Surface& result, const ShapeChangeOptions& options = {});
+
+// The crease share of many results of one input, measured again and again (the optimizer's check
+// on every iterate): the input's interior manifold edges, their lengths and dihedral angles are
+// found once; each measure() then costs O(#V + #F + #E), no sort.
+//   CreaseMeter meter(input, options);     // input as for shape_change
+//   meter.measure(result_V, out);           // #V by 3 (mm), the input's faces: fills out's
+//                                           // crease_share_pct, crease_p99_deg, max_crease_deg,
+//                                           // interior_edges as shape_change() does
+//   meter.share_pct(result_V)               // crease_share_pct alone (%)
+// Throws std::invalid_argument as shape_change() does (a bad threshold, a result of another size).
+class CreaseMeter {
+ public:
+  explicit CreaseMeter(const Surface& input, const ShapeChangeOptions& options = {});
+  void measure(const Points& result_V, ShapeChange& out) const;
+  double share_pct(const Points& result_V) const;
+
+ private:
+  // The change of each measured edge's angle; false for an edge a result's zero-area face drops.
+  void changes(const Points& result_V, std::vector<double>& change, std::vector<char>& measured) const;
+  Triangles F_;
+  Eigen::Index vertices_;
+  ShapeChangeOptions options_;
+  std::vector<DihedralEdge> edges_;  // the input's, with their angles
+  std::vector<double> length_;       // the input's edge lengths (mm)
+};
+
 
 }  // namespace slim

@@ -1,6 +1,7 @@
 #include "core/slimming.h"
 
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -9,6 +10,7 @@
 #include "core/checked_surface.h"
 #include "core/embedded_domain.h"
 #include "core/parallel_for.h"
+#include "core/shape_metrics.h"
 #include "core/result_choice.h"
 #include "core/slimmer.h"
 #include "core/support_model.h"
@@ -34,6 +36,8 @@ void validate_coherence(const CoherenceOptions& c) {
     throw std::invalid_argument("the edge-turn slack must be in [0, 180] degrees");
   if (!(c.max_step_deg > 0.0 && c.max_step_deg <= 180.0))
     throw std::invalid_argument("the coherent rotation step cap must be in (0, 180] degrees");
+  if (!(c.max_crease_share_pct >= 0.0 && c.max_crease_share_pct <= 100.0))
+    throw std::invalid_argument("the crease share limit must be in [0, 100] % (0: no limit)");
 }
 
 void validate_options(const Surface& input, const SlimmingOptions& o) {
@@ -105,11 +109,14 @@ double support_estimate(const Surface& s, const SlimmingOptions& o, double unmea
 // The iterations under the stopping rule; the best iterate goes into r.
 std::string iterate(SupportSlimmer& slimmer, const Surface& input, const SlimmingOptions& o,
                     const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
-  IterateChoice choice(r.history.front());
+  const double max_crease = coherence_of(o).max_crease_share_pct;
+  IterateChoice choice(r.history.front(), max_crease);
+  const std::optional<CreaseMeter> creases = max_crease > 0.0 ? std::make_optional<CreaseMeter>(input) : std::nullopt;
   for (int it = 1; it <= o.max_iterations; ++it) {
     r.iterations_run = it;
     IterationStats st = slimmer.step();
     st.iteration = it;
+    if (creases) st.crease_share_pct = creases->share_pct(slimmer.surface_positions());
     if (r.support_before_mm3 > 0.0) {
       const auto started = std::chrono::steady_clock::now();
       st.support_estimate = support_estimate(Surface{slimmer.surface_positions(), input.F}, o, std::nan(""));

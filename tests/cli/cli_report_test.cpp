@@ -77,6 +77,27 @@ TEST(CliReport, FiguresAreThoseOfTheFilesWritten) {
   fs::remove_all(dir);
 }
 
+// --max-creases: the file written creases no more than the limit (measured again on it; its float
+// coordinates move the angles a little), below the default run's share, and still saves support.
+TEST(CliReport, TheCreaseLimitHoldsInTheFileWritten) {
+  const fs::path dir = test::scratch();
+  const Surface in = test::sample_bunny();
+  double share[2];
+  for (int limited = 0; limited < 2; ++limited) {
+    const fs::path out = dir / "bunny.ply", report = dir / "bunny.json";
+    const test::CliRun r = test::run_cli("'" + test::sample_bunny_path() + "' -o '" + out.string() + "' --report '" +
+                                         report.string() + "' --quiet" + (limited ? " --max-creases 0.05" : ""));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::string text;
+    const std::map<std::string, double> f = read_numbers(report, text);
+    share[limited] = shape_change(in, vcgx::load_surface(out.string())).crease_share_pct;
+    EXPECT_LT(f.at("support_estimate_after_mm3"), f.at("support_estimate_before_mm3")) << limited;
+  }
+  EXPECT_LE(share[1], 0.05 + 0.02);
+  EXPECT_GT(share[0], 0.05 + 0.02) << "the default run no longer tests the limit";
+  fs::remove_all(dir);
+}
+
 TEST(CliReport, AnUnwritableReportExitsWithOneLine) {
   const fs::path dir = test::scratch();
   const test::CliRun r = test::run_cli("'" + test::sample_bunny_path() + "' -o '" + (dir / "b.ply").string() +

@@ -133,6 +133,7 @@ TEST(Cli, BadInputExitsNonZeroWithOneLine) {
   const std::string out = " -o '" + (dir / "o.ply").string() + "'";
   for (const std::string& args : {std::string(""), bunny, bunny + out + " --angle 95", bunny + out + " --angle abc",
                                  bunny + out + " --dir 0,0,0", bunny + out + " --domain cubes",
+                                 bunny + out + " --max-creases -1", bunny + out + " --max-creases 2 --method paper",
                                  "'" + (dir / "missing.ply").string() + "'" + out, bunny + out + " --resolution 100000",
                                  bunny + out + " --frobnicate"}) {
     const CliRun r = run_cli(args + " --quiet");
@@ -143,7 +144,7 @@ TEST(Cli, BadInputExitsNonZeroWithOneLine) {
   }
   const CliRun help = run_cli("--help");
   EXPECT_EQ(help.exit_code, 0);
-  for (const char* flag : {"--angle", "--dir", "--resolution", "--domain", "--iterations", "--method", "--max-deviation", "--threads"})
+  for (const char* flag : {"--angle", "--dir", "--resolution", "--domain", "--iterations", "--method", "--max-deviation", "--max-creases", "--threads"})
     EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
   fs::remove_all(dir);
 }

@@ -149,3 +149,28 @@ TEST(ShapeMetrics, DifferentMeshesAreRefused) {
   bad.crease_threshold_deg = -1;
   EXPECT_THROW(shape_change(a, a, bad), std::invalid_argument);
 }
+
+// The optimizer measures every iterate with one meter: each measure is what the fold's geometry
+// says, whatever was measured before (the meter keeps only the input).
+TEST(ShapeMetrics, OneCreaseMeterMeasuresManyResultsAsTheyAre) {
+  const int n = 10;
+  const Surface in = sheet(n);
+  const CreaseMeter meter(in);
+  for (double degrees : {30.0, 5.0, -90.0, 0.0, 30.0}) {
+    const Surface out = folded(in, degrees);
+    ShapeChange c;
+    meter.measure(out.V, c);
+    const double expected = std::abs(degrees) > 10.0 ? fold_share_pct(n) : 0.0;
+    EXPECT_NEAR(c.crease_share_pct, expected, 1e-9) << degrees;
+    EXPECT_NEAR(meter.share_pct(out.V), expected, 1e-9) << degrees;
+    EXPECT_NEAR(c.max_crease_deg, std::abs(degrees), 1e-9) << degrees;
+    EXPECT_EQ(c.interior_edges, 2 * n * (n - 1) + n * n);
+  }
+  // A result face squashed to no area drops its three edges from the measure.
+  Surface squashed = in;
+  squashed.V.row(in.F(0, 1)) = squashed.V.row(in.F(0, 0));
+  ShapeChange c;
+  meter.measure(squashed.V, c);
+  EXPECT_LT(c.interior_edges, 2 * n * (n - 1) + n * n);
+  EXPECT_THROW(meter.measure(sheet(n + 1).V, c), std::invalid_argument);
+}
