@@ -46,7 +46,9 @@ test::CommandRun evaluate(const std::string& args) {
                            test::shell_quote(SLIM_BINARY_DIR) + " --quiet " + args);
 }
 
-// Writes the arch refined once (as a remeshed part would be) and judges it at `angle`.
+// Writes the arch refined three times (as a remeshed part would be) and judges it at `angle`.
+// Refined once, its few long edges crease more than the default limit allows as soon as the crown
+// bends (2.7% of the edge length at a 2% support cut), and the run returns little.
 struct Judged {
   test::CommandRun run;
   fs::path out;
@@ -56,7 +58,7 @@ Judged judge_arch(double angle, const std::string& more = "") {
   Judged j;
   const fs::path dir = scratch("arch_" + std::to_string(static_cast<int>(angle)));
   const fs::path mesh = dir / "arch.ply";
-  vcgx::save_surface(mesh.string(), test::refined(test::arch(), 1));
+  vcgx::save_surface(mesh.string(), test::refined(test::arch(), 3));
   j.out = dir / "report";
   j.run = evaluate(test::shell_quote(mesh.string()) + " --angle " + std::to_string(angle) + " --out " +
                    test::shell_quote(j.out.string()) + " " + more);
