@@ -5,15 +5,6 @@
 
 namespace slim {
 
-namespace {
-
-double volume_at(const Embedding& e, const Triangles& F, const Points& V, Points& surface) {
-  embedded_positions(e, V, surface);
-  return signed_volume(Surface{surface, F});
-}
-
-}  // namespace
-
 Points embedded_volume_gradient(const Embedding& e, const Triangles& F, const Points& S, Eigen::Index domain_vertices) {
   // Vol = 1/6 sum over faces of a · (b x c) about the centroid; d/da = (b x c) / 6 summed over a's
   // faces, which for a closed surface is a third of the area-weighted normals around a.
@@ -39,18 +30,38 @@ Points volume_load(const Embedding& e, const Triangles& F, const Points& V_start
 }
 
 double keep_volume(const Embedding& e, const Triangles& F, double target, const Points& u, Points& proposed) {
-  Points surface;
-  double volume = volume_at(e, F, proposed, surface);
-  const Points base = proposed;
-  double lambda = 0.0;
-  for (int step = 0; step < 4 && std::abs(volume - target) > 1e-9 * std::abs(target); ++step) {
-    const Points g = embedded_volume_gradient(e, F, surface, proposed.rows());
-    const double slope = (g.array() * u.array()).sum();
-    if (!(std::abs(slope) > 0.0) || !std::isfinite(slope)) break;
-    lambda += (target - volume) / slope;
-    proposed = base + lambda * u;
-    volume = volume_at(e, F, proposed, surface);
+  // The surface moves linearly with lambda (the embedding is linear), and so does its centroid,
+  // so Vol(lambda) = (d0 + d1 lambda + d2 lambda^2 + d3 lambda^3) / 6 exactly: one pass over the
+  // faces for the coefficients, then Newton's method on the cubic alone.
+  Points S, Su;
+  embedded_positions(e, proposed, S);
+  embedded_positions(e, u, Su);
+  const Eigen::RowVector3d centre = S.colwise().mean(), centre_u = Su.colwise().mean();
+  Eigen::Vector4d d = Eigen::Vector4d::Zero();
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    Eigen::Matrix3d P, Q;  // columns: the corners about the centroid, and their motion per unit lambda
+    for (int k = 0; k < 3; ++k) {
+      P.col(k) = (S.row(F(f, k)) - centre).transpose();
+      Q.col(k) = (Su.row(F(f, k)) - centre_u).transpose();
+    }
+    const Eigen::Vector3d a = P.col(0), b = P.col(1), c = P.col(2), p = Q.col(0), q = Q.col(1), r = Q.col(2);
+    d(0) += a.dot(b.cross(c));
+    d(1) += p.dot(b.cross(c)) + a.dot(q.cross(c)) + a.dot(b.cross(r));
+    d(2) += a.dot(q.cross(r)) + p.dot(b.cross(r)) + p.dot(q.cross(c));
+    d(3) += p.dot(q.cross(r));
   }
+  d /= 6.0;
+  auto volume = [&](double l) { return d(0) + l * (d(1) + l * (d(2) + l * d(3))); };
+  auto slope = [&](double l) { return d(1) + l * (2.0 * d(2) + l * 3.0 * d(3)); };
+  double lambda = 0.0;
+  for (int step = 0; step < 20 && std::abs(volume(lambda) - target) > 1e-12 * std::abs(target); ++step) {
+    const double s = slope(lambda);
+    if (!(std::abs(s) > 0.0) || !std::isfinite(s)) break;
+    const double next = lambda + (target - volume(lambda)) / s;
+    if (!std::isfinite(next)) break;
+    lambda = next;
+  }
+  if (lambda != 0.0) proposed += lambda * u;
   return lambda;
 }
 

@@ -1,0 +1,92 @@
+// Keeping the volume through the global step (core/volume_keeping.h): the pressure's lambda, found
+// on the exact cubic, against a brute-force bisection on the embedded surface's own volume, on the
+// ball embedded in its voxel domain and bent by random rotations.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/arap.h"
+#include "core/checked_surface.h"
+#include "core/embedded_domain.h"
+#include "core/volume_keeping.h"
+#include "support/shapes.h"
+
+using namespace slim;
+
+namespace {
+
+double embedded_volume(const Embedding& e, const Triangles& F, const Points& V) {
+  Points S;
+  embedded_positions(e, V, S);
+  return signed_volume(Surface{S, F});
+}
+
+// Rotations by up to `degrees` about random axes: a global step that squeezes or swells the part.
+std::vector<Eigen::Matrix3d> random_turns(int n, double degrees, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::normal_distribution<double> g;
+  std::vector<Eigen::Matrix3d> L(static_cast<size_t>(n));
+  for (auto& R : L) {
+    const Eigen::Vector3d axis = Eigen::Vector3d(g(gen), g(gen), g(gen)).normalized();
+    R = test::axis_angle(axis, degrees * M_PI / 180.0 * std::abs(g(gen)) / 3.0);
+  }
+  return L;
+}
+
+// A ball resting on z = 0, embedded in its voxel domain at `resolution` cells.
+struct BallInDomain {
+  Surface ball = test::icosphere(3);
+  EmbeddedDomain domain;
+  explicit BallInDomain(int resolution) {
+    SlimmingOptions o;
+    o.resolution = resolution;
+    domain = embedded_domain(CheckedSurface(ball), Eigen::Vector3d::UnitZ(), o, [](double, const std::string&) {});
+  }
+};
+
+}  // namespace
+
+TEST(VolumeKeeping, LambdaOnTheCubicIsTheRootBisectionFinds) {
+  const BallInDomain fixture(12);
+  const Surface& ball = fixture.ball;
+  const EmbeddedDomain& domain = fixture.domain;
+  std::vector<int> plate;
+  for (Eigen::Index v = 0; v < domain.mesh.V.rows(); ++v)
+    if (domain.on_plate(v)) plate.push_back(static_cast<int>(v));
+  const ArapSolver arap(domain.mesh, plate);
+  const double target = signed_volume(ball);
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const std::vector<Eigen::Matrix3d> L = random_turns(static_cast<int>(domain.mesh.T.rows()), 20.0, seed);
+    Points u;
+    const Points solved =
+        arap.solve_with_response(L, domain.mesh.V, volume_load(domain.embedding, ball.F, domain.mesh.V), u);
+    const double before = embedded_volume(domain.embedding, ball.F, solved);
+    ASSERT_GT(std::abs(before / target - 1.0), 1e-3) << "the random step should change the volume";
+    Points kept = solved;
+    const double lambda = keep_volume(domain.embedding, ball.F, target, u, kept);
+    EXPECT_NEAR(embedded_volume(domain.embedding, ball.F, kept), target, 1e-9 * target) << seed;
+    EXPECT_TRUE(kept.isApprox(solved + lambda * u, 1e-15)) << seed;
+    // Brute force: bisection on the embedded surface's volume along u, from a bracket.
+    auto excess = [&](double l) { return embedded_volume(domain.embedding, ball.F, solved + l * u) - target; };
+    double lo = 0.0, hi = lambda * 2.0 + (lambda >= 0 ? 1e-12 : -1e-12);
+    ASSERT_LT(excess(lo) * excess(hi), 0.0) << seed;
+    for (int k = 0; k < 200; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (excess(mid) * excess(lo) > 0.0 ? lo : hi) = mid;
+    }
+    EXPECT_NEAR(lambda, 0.5 * (lo + hi), 1e-9 * std::abs(lambda)) << seed;
+  }
+}
+
+TEST(VolumeKeeping, NoResponseLeavesThePositionsAlone) {
+  const BallInDomain fixture(8);
+  const Surface& ball = fixture.ball;
+  const EmbeddedDomain& domain = fixture.domain;
+  Points V = domain.mesh.V * 1.01;
+  const Points before = V;
+  EXPECT_EQ(keep_volume(domain.embedding, ball.F, signed_volume(ball), Points::Zero(V.rows(), 3), V), 0.0);
+  EXPECT_TRUE(V == before);
+}
