@@ -1,6 +1,6 @@
 // The faces around every vertex and across every edge of a welded triangle mesh.
 //
-//   const FaceAdjacency adjacency(surface);
+//   const FaceAdjacency adjacency(surface);            // or (faces, vertex count, every twin)
 //   adjacency.faces_of(v)     the faces using vertex v, in increasing order
 //   adjacency.across(f, k)    the face across face f's edge k, and its vertex opposite the edge
 //
@@ -12,7 +12,9 @@
 //                 one other face that uses that edge and runs along it the other way (a manifold,
 //                 consistently oriented edge) and its third vertex; {-1, -1} otherwise.
 // Cost: O(#V + #F) to build (a counting sort by vertex); across() looks at the faces around one
-// vertex (a few), so callers that need the twins of some edges only pay for those.
+// vertex (a few), so callers that need the twins of some edges only pay for those. With every
+// twin asked for up front (a table of 3 #F, found on the OpenMP threads), across() is a lookup:
+// for a caller that asks again and again (the support model on every iterate of one mesh).
 #pragma once
 
 #include <array>
@@ -25,6 +27,7 @@ namespace slim {
 class FaceAdjacency {
  public:
   explicit FaceAdjacency(const Surface& surface);
+  FaceAdjacency(const Triangles& faces, Eigen::Index vertices, bool every_twin);
 
   struct Twin {
     int face = -1, opposite = -1;
@@ -38,6 +41,8 @@ class FaceAdjacency {
  private:
   std::vector<std::array<int, 3>> tri_;  // the faces row by row: the searches jump between faces
   std::vector<int> vertex_begin_, vertex_face_;
+  std::vector<Twin> twins_;  // 3 #F when every twin was asked for, else empty
+  Twin find_twin(int f, int k) const;
 };
 
 }  // namespace slim

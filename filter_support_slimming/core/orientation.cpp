@@ -263,12 +263,13 @@ void choose_best(const OrientationGeometry& g, const OrientationOptions& o, cons
 void judge_by_support(const Surface& oriented, const OrientationOptions& o, OrientationResult& result) {
   const size_t judged = std::min(result.top.size(), static_cast<size_t>(std::max(0, o.support_model_candidates)));
   if (judged == 0) return;
+  const SupportModel model(oriented.F, oriented.V.rows());  // one mesh in every pose
   auto estimate = [&](OrientationCandidate& c) {
     SupportModelOptions m;
     m.print_direction = c.direction;
     m.alpha_max_deg = o.alpha_max_deg;
     try {
-      c.support_estimate = estimate_support(oriented, m).volume_mm3;
+      c.support_estimate = model.estimate(oriented.V, m).volume_mm3;
     } catch (const std::invalid_argument&) {
       c.support_estimate = -1.0;  // the model cannot judge this pose (no height): the score stands
     }

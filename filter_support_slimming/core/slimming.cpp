@@ -90,24 +90,24 @@ std::string embed_and_write_back(const Surface& input, const EmbeddedDomain& dom
   return why;
 }
 
-// The support model's estimate for a surface (mm³); 0 when the run does not measure it, and
-// `unmeasurable` when the model refuses the surface (a part with no height, say): the input is then
-// judged by the shadow volume alone, an iterate never chosen.
-double support_estimate(const Surface& s, const SlimmingOptions& o, double unmeasurable) {
-  if (!coherence_of(o).choose_by_support_model) return 0.0;
+// The support model's estimate for positions of the input's mesh (mm³); 0 when the run does not
+// measure it (no model), and `unmeasurable` when the model refuses the surface (a part with no
+// height, say): the input is then judged by the shadow volume alone, an iterate never chosen.
+double support_estimate(const SupportModel* model, const Points& V, const SlimmingOptions& o, double unmeasurable) {
+  if (!model) return 0.0;
   SupportModelOptions m;
   m.print_direction = o.print_direction;
   m.alpha_max_deg = o.alpha_max_deg;
   m.threads = o.threads;
   try {
-    return estimate_support(s, m).volume_mm3;
+    return model->estimate(V, m).volume_mm3;
   } catch (const std::invalid_argument&) {
     return unmeasurable;
   }
 }
 
 // The iterations under the stopping rule; the best iterate goes into r.
-std::string iterate(SupportSlimmer& slimmer, const Surface& input, const SlimmingOptions& o,
+std::string iterate(SupportSlimmer& slimmer, const Surface& input, const SupportModel* model, const SlimmingOptions& o,
                     const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
   const double max_crease = coherence_of(o).max_crease_share_pct;
   IterateChoice choice(r.history.front(), max_crease);
@@ -119,7 +119,7 @@ std::string iterate(SupportSlimmer& slimmer, const Surface& input, const Slimmin
     if (creases) st.crease_share_pct = creases->share_pct(slimmer.surface_positions());
     if (r.support_before_mm3 > 0.0) {
       const auto started = std::chrono::steady_clock::now();
-      st.support_estimate = support_estimate(Surface{slimmer.surface_positions(), input.F}, o, std::nan(""));
+      st.support_estimate = support_estimate(model, slimmer.surface_positions(), o, std::nan(""));
       r.stage_seconds.support_model += seconds_since(started);
     }
     r.history.push_back(st);
@@ -156,7 +156,11 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
     if (o.progress && !o.progress(fraction, message)) throw Cancelled();
   };
   SlimmingResult r = unchanged(input, analyse_overhang(checked, measure));
-  r.support_before_mm3 = r.support_after_mm3 = r.history[0].support_estimate = support_estimate(input, o, 0.0);
+  // The model's topology is the input's for every iterate: its adjacency is found once.
+  const std::optional<SupportModel> model =
+      coherence_of(o).choose_by_support_model ? std::make_optional<SupportModel>(input.F, input.V.rows()) : std::nullopt;
+  const SupportModel* judge = model ? &*model : nullptr;
+  r.support_before_mm3 = r.support_after_mm3 = r.history[0].support_estimate = support_estimate(judge, input.V, o, 0.0);
   const double budget = deviation_budget(o, diag);
   r.deviation_budget_mm = std::isfinite(budget) ? budget : 0.0;
   auto finish = [&](const std::string& why) {
@@ -177,7 +181,7 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
 
   SupportSlimmer slimmer(checked, std::move(domain), r.before, o, report);
   r.solver_backend = slimmer.backend_name();
-  std::string why = iterate(slimmer, input, o, report, r);
+  std::string why = iterate(slimmer, input, judge, o, report, r);
   // The result is the best iterate; its statistics close the history.
   r.history.resize(static_cast<size_t>(r.iterations) + 1);
   r.volume_after = signed_volume(r.surface);

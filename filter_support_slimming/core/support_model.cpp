@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "core/face_adjacency.h"
 #include "core/orientation.h"
 #include "core/parallel_for.h"
 #include "core/support_raster.h"
@@ -97,9 +98,7 @@ PixelGrid raster_grid(const Surface& s, const SupportModelOptions& o) {
   return g;
 }
 
-}  // namespace
-
-SupportEstimate estimate_support(const Surface& surface, const SupportModelOptions& o) {
+SupportEstimate estimate_with(const Surface& surface, const FaceAdjacency& adjacency, const SupportModelOptions& o) {
   check_options(o);
   check_surface(surface);
   require(surface.F.rows() > 0, "the surface has no faces");
@@ -130,7 +129,7 @@ SupportEstimate estimate_support(const Surface& surface, const SupportModelOptio
     const PixelGrid grid = raster_grid(frame, o);
     const double cells = static_cast<double>(grid.nx / o.pixels_per_cell) * (grid.ny / o.pixels_per_cell);
     require(cells * layer_count <= kMaxCellLayers, "the part is too large for the support model (more than 1e9 grid cells times layers)");
-    const SupportRaster raster = build_support_raster(frame, grid, rule);
+    const SupportRaster raster = build_support_raster(frame, adjacency, grid, rule);
     const GridSupportSweep sweep(raster, layers, settings);
     std::vector<GridSweepResult> phase(offsets.size());
     parallel_for(static_cast<int>(offsets.size()), [&](int k) { phase[k] = sweep.run(offsets[k].first, offsets[k].second); });
@@ -159,6 +158,38 @@ SupportEstimate estimate_support(const Surface& surface, const SupportModelOptio
   }
   est.volume_mm3 = est.base_fill_mm3 + est.sheath_mm3 + est.top_interface_mm3 + est.bottom_interface_mm3 + est.first_layer_mm3;
   return est;
+}
+
+}  // namespace
+
+struct SupportModel::Impl {
+  Triangles F;
+  Eigen::Index vertices;
+  FaceAdjacency adjacency;
+  Impl(const Triangles& faces, Eigen::Index n) : F(checked_faces(faces, n)), vertices(n), adjacency(faces, n, true) {}
+  // The faces' indices checked before the adjacency reads them (positions come later).
+  static const Triangles& checked_faces(const Triangles& faces, Eigen::Index n) {
+    check_surface(Surface{Points::Zero(n, 3), faces});
+    return faces;
+  }
+};
+
+SupportModel::SupportModel(const Triangles& faces, Eigen::Index vertices)
+    : impl_(std::make_unique<Impl>(faces, vertices)) {}
+SupportModel::~SupportModel() = default;
+SupportModel::SupportModel(SupportModel&&) noexcept = default;
+
+SupportEstimate SupportModel::estimate(const Points& V, const SupportModelOptions& o) const {
+  require(V.rows() == impl_->vertices, "the positions have " + std::to_string(V.rows()) + " rows for a mesh of " +
+                                           std::to_string(impl_->vertices) + " vertices");
+  return estimate_with(Surface{V, impl_->F}, impl_->adjacency, o);
+}
+
+SupportEstimate estimate_support(const Surface& surface, const SupportModelOptions& o) {
+  check_options(o);
+  check_surface(surface);
+  require(surface.F.rows() > 0, "the surface has no faces");
+  return estimate_with(surface, FaceAdjacency(surface), o);
 }
 
 }  // namespace slim

@@ -67,6 +67,7 @@
 // 4096 grid cells across, 50,000 layers, or 1e9 cells times layers: metres, not a print).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -131,5 +132,25 @@ struct SupportEstimate {
 };
 
 SupportEstimate estimate_support(const Surface& surface, const SupportModelOptions& options = {});
+
+// The model for many shapes or poses of one mesh (the optimizer's iterates, the orientation
+// search's candidates): what depends on the faces alone, their adjacency with every edge's twin,
+// is found once.
+//   const SupportModel model(faces, vertex_count);
+//   model.estimate(V, options)   // V: #V by 3 (mm); the same figures, bit for bit, as
+//                                // estimate_support(Surface{V, faces}, options)
+// The constructor checks the faces' indices, estimate() the positions (check_surface): both throw
+// std::invalid_argument, as estimate_support does.
+class SupportModel {
+ public:
+  SupportModel(const Triangles& faces, Eigen::Index vertices);
+  ~SupportModel();
+  SupportModel(SupportModel&&) noexcept;
+  SupportEstimate estimate(const Points& V, const SupportModelOptions& options = {}) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace slim

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "core/face_adjacency.h"
+#include "core/parallel_for.h"
 #include "core/triangle_cells.h"
 #include "core/union_find.h"
 
@@ -55,6 +56,22 @@ void pixel_range(double a, double b, double origin, double pixel, int n, int& lo
   hi = static_cast<int>(std::max(-1.0, std::min(h, static_cast<double>(n - 1))));
 }
 
+// Items 0..n-1 (faces, vertices) cut into ranges whose outputs are gathered apart, on the OpenMP
+// threads, and joined in range order: the sequence one pass would give, whatever the thread count.
+// body(begin, end, out) appends what items [begin, end) give.
+template <class T, class Body>
+std::vector<T> gather_in_ranges(Eigen::Index n, Body body) {
+  const int ranges = n >= 4096 ? 16 : 1;
+  std::vector<std::vector<T>> parts(static_cast<size_t>(ranges));
+  parallel_for(ranges, [&](int r) { body(n * r / ranges, n * (r + 1) / ranges, parts[static_cast<size_t>(r)]); });
+  size_t total = 0;
+  for (const auto& p : parts) total += p.size();
+  std::vector<T> out;
+  out.reserve(total);
+  for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
+  return out;
+}
+
 // Stable counting sort of items by their pixel, then each pixel's items by `less`.
 template <class T, class Less>
 void sort_by_pixel(std::vector<T>& items, int pixels, Less less) {
@@ -69,33 +86,38 @@ void sort_by_pixel(std::vector<T>& items, int pixels, Less less) {
   items.swap(sorted);
 }
 
+// The rays through the pixel centres that face f crosses, appended to `out`.
+void cross_rays(const Surface& s, const PixelGrid& g, Eigen::Index f, std::vector<Crossing>& out) {
+  const int id[3] = {s.F(f, 0), s.F(f, 1), s.F(f, 2)};
+  const Vec3 p[3] = {s.V.row(id[0]).transpose(), s.V.row(id[1]).transpose(), s.V.row(id[2]).transpose()};
+  const Vec2 q[3] = {p[0].head<2>(), p[1].head<2>(), p[2].head<2>()};
+  const double area2 = cross2(q[1] - q[0], q[2] - q[0]);
+  if (!(std::abs(area2) > 0)) return;  // seen edge on: no ray crosses it
+  const int orient = area2 > 0 ? 1 : -1;  // +1: counter-clockwise from above, looking up
+  int i0, i1, j0, j1;
+  pixel_range(std::min({q[0].x(), q[1].x(), q[2].x()}), std::max({q[0].x(), q[1].x(), q[2].x()}), g.x0, g.pixel, g.nx, i0, i1);
+  pixel_range(std::min({q[0].y(), q[1].y(), q[2].y()}), std::max({q[0].y(), q[1].y(), q[2].y()}), g.y0, g.pixel, g.ny, j0, j1);
+  for (int j = j0; j <= j1; ++j) {
+    for (int i = i0; i <= i1; ++i) {
+      const Vec2 c(g.x0 + (i + 0.5) * g.pixel, g.y0 + (j + 0.5) * g.pixel);
+      bool inside = true;
+      for (int k = 0; k < 3 && inside; ++k)
+        inside = edge_side(q[k], id[k], q[(k + 1) % 3], id[(k + 1) % 3], c) == orient;
+      if (!inside) continue;
+      const double w0 = cross2(q[1] - c, q[2] - c), w1 = cross2(q[2] - c, q[0] - c);
+      const double z = (w0 * p[0].z() + w1 * p[1].z() + (area2 - w0 - w1) * p[2].z()) / area2;
+      out.push_back({i + g.nx * j, z, -orient});
+    }
+  }
+}
+
 // The solid spans: every face crossed by the rays through the pixel centres, then nonzero winding
 // along each ray.
 void rasterize_solid(const Surface& s, const PixelGrid& g, SupportRaster& out) {
-  std::vector<Crossing> crossings;
-  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
-    const int id[3] = {s.F(f, 0), s.F(f, 1), s.F(f, 2)};
-    const Vec3 p[3] = {s.V.row(id[0]).transpose(), s.V.row(id[1]).transpose(), s.V.row(id[2]).transpose()};
-    const Vec2 q[3] = {p[0].head<2>(), p[1].head<2>(), p[2].head<2>()};
-    const double area2 = cross2(q[1] - q[0], q[2] - q[0]);
-    if (!(std::abs(area2) > 0)) continue;  // seen edge on: no ray crosses it
-    const int orient = area2 > 0 ? 1 : -1;  // +1: counter-clockwise from above, looking up
-    int i0, i1, j0, j1;
-    pixel_range(std::min({q[0].x(), q[1].x(), q[2].x()}), std::max({q[0].x(), q[1].x(), q[2].x()}), g.x0, g.pixel, g.nx, i0, i1);
-    pixel_range(std::min({q[0].y(), q[1].y(), q[2].y()}), std::max({q[0].y(), q[1].y(), q[2].y()}), g.y0, g.pixel, g.ny, j0, j1);
-    for (int j = j0; j <= j1; ++j) {
-      for (int i = i0; i <= i1; ++i) {
-        const Vec2 c(g.x0 + (i + 0.5) * g.pixel, g.y0 + (j + 0.5) * g.pixel);
-        bool inside = true;
-        for (int k = 0; k < 3 && inside; ++k)
-          inside = edge_side(q[k], id[k], q[(k + 1) % 3], id[(k + 1) % 3], c) == orient;
-        if (!inside) continue;
-        const double w0 = cross2(q[1] - c, q[2] - c), w1 = cross2(q[2] - c, q[0] - c);
-        const double z = (w0 * p[0].z() + w1 * p[1].z() + (area2 - w0 - w1) * p[2].z()) / area2;
-        crossings.push_back({i + g.nx * j, z, -orient});
-      }
-    }
-  }
+  std::vector<Crossing> crossings =
+      gather_in_ranges<Crossing>(s.F.rows(), [&](Eigen::Index first, Eigen::Index end, std::vector<Crossing>& part) {
+        for (Eigen::Index f = first; f < end; ++f) cross_rays(s, g, f, part);
+      });
   sort_by_pixel(crossings, g.count(), [](const Crossing& x, const Crossing& y) { return x < y; });
   out.span_begin.assign(static_cast<size_t>(g.count()) + 1, 0);
   out.spans.clear();
@@ -199,17 +221,18 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
   std::vector<char> kind(static_cast<size_t>(nf), 0);
   std::vector<Vec3> normal(static_cast<size_t>(nf));
   UnionFind regions(nf);
-  for (int f = 0; f < nf; ++f) {
+  std::vector<int> across(static_cast<size_t>(3) * nf, -1);  // for the overhanging faces only
+  parallel_for(nf, [&](int f) {
     const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
     normal[f] = (b - a).cross(c - a);
     const double len = normal[f].norm();
     const double down = len > 0 ? -normal[f].z() / len : 0.0;  // cos of the slope, for a face looking down
     kind[f] = down > cos_max ? (down > cos_dense ? 2 : 1) : 0;
-  }
-  std::vector<int> across(static_cast<size_t>(3) * nf, -1);  // for the overhanging faces only
+    for (int k = 0; k < 3 && kind[f]; ++k) across[3 * f + k] = adj.across(f, k).face;
+  });
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3 && kind[f]; ++k) {
-      const int g = across[3 * f + k] = adj.across(f, k).face;
+      const int g = across[3 * f + k];
       if (g >= 0 && kind[g]) regions.join(f, g);
     }
   // Per region (at its root): projected area, outline, sum of area × tan(slope), and along the
@@ -257,15 +280,15 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
 
 // Bottom creases and lowest vertices: the first slice of a keel or a tip is an island with nothing
 // below it, which slicers support whatever the slope of the faces around it. The faces around each
-// vertex (counting sort, no hashing) give every edge's other face.
-void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule, const LayerVoxels& voxels,
-                           std::vector<PixelOverhang>& out) {
+// vertex (counting sort, no hashing) give every edge's other face. Faces [first, end) for the
+// creases; vertices [first, end) for the tips.
+void mark_creases(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule, const LayerVoxels& voxels,
+                  Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) {
   const double cos_max_slope = std::cos(rule.max_slope_deg * M_PI / 180.0);
   const double reach_overhang = 1.0 / std::tan(rule.max_slope_deg * M_PI / 180.0);
   const double reach_dense = 1.0 / std::tan(rule.dense_slope_deg * M_PI / 180.0);
-  const int nv = static_cast<int>(s.V.rows()), nf = static_cast<int>(s.F.rows());
   auto vertex = [&](int v) -> Vec3 { return s.V.row(v).transpose(); };
-  for (int f = 0; f < nf && rule.creases; ++f) {
+  for (int f = static_cast<int>(first); f < end; ++f) {
     for (int k = 0; k < 3; ++k) {
       const int u = s.F(f, k), v = s.F(f, (k + 1) % 3), w = s.F(f, (k + 2) % 3);
       const Vec3 a = vertex(u), b = vertex(v), c = vertex(w), e = b - a;
@@ -284,7 +307,11 @@ void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const Ove
       if (reach > reach_overhang) mark_feature(voxels, a, b, b, reach > reach_dense, out);
     }
   }
-  for (int v = 0; v < nv && rule.tips; ++v) {
+}
+
+void mark_tips(const Surface& s, const FaceAdjacency& adj, const LayerVoxels& voxels, Eigen::Index first,
+               Eigen::Index end, std::vector<PixelOverhang>& out) {
+  for (int v = static_cast<int>(first); v < end; ++v) {
     if (adj.faces_end(v) - adj.faces_begin(v) < 3) continue;
     double lowest = INFINITY;
     for (const int* f = adj.faces_begin(v); f != adj.faces_end(v); ++f)
@@ -296,34 +323,51 @@ void mark_creases_and_tips(const Surface& s, const FaceAdjacency& adj, const Ove
   }
 }
 
+// The overhanging faces [first, end) (kind: overhanging_faces()) marked, and those on a region's
+// edge also shifted by the reach both ways along their level direction: the slicer grows each
+// layer's overhang back by one layer's reach into the layer around it, so where an overhang region
+// ends along the part's outline its contact runs on that far into the steeper faces beside it.
+void mark_overhangs(const Surface& s, const std::vector<char>& kind, const OverhangRule& rule, const LayerVoxels& voxels,
+                    Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) {
+  const double reach = rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0);
+  for (int f = static_cast<int>(first); f < end; ++f) {
+    if (!kind[f]) continue;
+    const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+    const bool dense = (kind[f] & 3) == 2;
+    mark_feature(voxels, a, b, c, dense, out);
+    const Vec3 n = (b - a).cross(c - a);
+    if (!(kind[f] & 4) || !(n.head<2>().norm() > 0)) continue;
+    const Vec3 along = Vec3(-n.y(), n.x(), 0.0).normalized() * reach;  // the face's level direction
+    for (double side : {-1.0, 1.0}) mark_feature(voxels, a + side * along, b + side * along, c + side * along, dense, out);
+  }
+}
+
 }  // namespace
 
 SupportRaster build_support_raster(const Surface& s, const PixelGrid& g, const OverhangRule& rule) {
+  return build_support_raster(s, FaceAdjacency(s), g, rule);
+}
+
+SupportRaster build_support_raster(const Surface& s, const FaceAdjacency& adj, const PixelGrid& g, const OverhangRule& rule) {
   if (!(g.pixel > 0) || g.nx <= 0 || g.ny <= 0) throw std::invalid_argument("support raster: empty pixel grid");
   if (!(rule.max_slope_deg > 0 && rule.max_slope_deg <= 90))
     throw std::invalid_argument("support raster: the overhang slope must lie in (0, 90] degrees");
   SupportRaster out;
   out.grid = g;
   rasterize_solid(s, g, out);
-  const FaceAdjacency adj(s);
   const LayerVoxels voxels(g, rule, s.V.col(2).maxCoeff());
   const std::vector<char> kind = overhanging_faces(s, adj, rule);
-  // The slicer grows each layer's overhang back by one layer's reach into the layer around it, so
-  // where an overhang region ends along the part's outline its contact runs on that far into the
-  // steeper faces beside it: the faces on a region's edge are also marked shifted by the reach
-  // both ways along their level direction.
-  const double reach = rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0);
-  for (int f = 0; f < static_cast<int>(s.F.rows()); ++f) {
-    if (!kind[f]) continue;
-    const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    const bool dense = (kind[f] & 3) == 2;
-    mark_feature(voxels, a, b, c, dense, out.overhangs);
-    const Vec3 n = (b - a).cross(c - a);
-    if (!(kind[f] & 4) || !(n.head<2>().norm() > 0)) continue;
-    const Vec3 along = Vec3(-n.y(), n.x(), 0.0).normalized() * reach;  // the face's level direction
-    for (double side : {-1.0, 1.0}) mark_feature(voxels, a + side * along, b + side * along, c + side * along, dense, out.overhangs);
-  }
-  mark_creases_and_tips(s, adj, rule, voxels, out.overhangs);
+  using Part = std::vector<PixelOverhang>;
+  out.overhangs = gather_in_ranges<PixelOverhang>(
+      s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_overhangs(s, kind, rule, voxels, a, b, part); });
+  for (const Part& more :
+       {rule.creases ? gather_in_ranges<PixelOverhang>(
+                           s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_creases(s, adj, rule, voxels, a, b, part); })
+                     : Part{},
+        rule.tips ? gather_in_ranges<PixelOverhang>(
+                        s.V.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_tips(s, adj, voxels, a, b, part); })
+                  : Part{}})
+    out.overhangs.insert(out.overhangs.end(), more.begin(), more.end());
   sort_by_pixel(out.overhangs, g.count(), [](const PixelOverhang& x, const PixelOverhang& y) {
     if (x.layer_low != y.layer_low) return x.layer_low < y.layer_low;
     if (x.layer_high != y.layer_high) return x.layer_high < y.layer_high;

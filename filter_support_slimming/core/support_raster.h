@@ -1,6 +1,7 @@
 // The part seen along the print direction, pixel by pixel: what the support model sweeps.
 //
 //   SupportRaster build_support_raster(surface, grid, rule)
+//   SupportRaster build_support_raster(surface, adjacency, grid, rule)   // adjacency kept by the caller
 //
 // Inputs
 //   surface  #V by 3 positions (mm) in the print frame (+Z up), #F by 3 outward-oriented faces
@@ -77,6 +78,11 @@ struct SupportRaster {
   std::vector<PixelOverhang> overhangs;  // sorted by pixel, then z_low
 };
 
+class FaceAdjacency;
 SupportRaster build_support_raster(const Surface& surface, const PixelGrid& grid, const OverhangRule& rule);
+// The same with the faces' adjacency (face_adjacency.h) of surface's faces given: a caller that
+// rasterises many shapes of one mesh finds it once.
+SupportRaster build_support_raster(const Surface& surface, const FaceAdjacency& adjacency, const PixelGrid& grid,
+                                   const OverhangRule& rule);
 
 }  // namespace slim

@@ -60,5 +60,20 @@ TEST(FaceAdjacency, OpenEdgesHaveNoTwin) {
   for (int v = 0; v < 3; ++v) EXPECT_EQ(a.faces_end(v) - a.faces_begin(v), 1);
 }
 
+
+// With every twin found up front (the support model's, kept across iterates), across() answers
+// what the search around a vertex answers, on closed, open and non-manifold meshes.
+TEST(FaceAdjacency, TheTwinTableAnswersAsTheSearchDoes) {
+  for (const Surface& s : {test::refined(test::icosphere(2), 1), test::two_cubes_sharing_edge(1.0),
+                           test::refined(test::mushroom(), 1)}) {
+    const FaceAdjacency search(s), table(s.F, s.V.rows(), true);
+    for (int f = 0; f < s.F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(table.across(f, k).face, search.across(f, k).face) << f << " " << k;
+        EXPECT_EQ(table.across(f, k).opposite, search.across(f, k).opposite) << f << " " << k;
+      }
+  }
+}
+
 }  // namespace
 }  // namespace slim

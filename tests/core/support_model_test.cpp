@@ -275,6 +275,34 @@ TEST(SupportModel, SameResultOnAnyThreadCountAndPrintDirection) {
   EXPECT_NEAR(volume(flipped_t, down), a.volume_mm3, 1e-6 * a.volume_mm3);
 }
 
+// The optimizer keeps one model for all its iterates, the orientation search one for all its
+// poses: the faces' adjacency is found once, and every estimate is estimate_support's, bit for bit,
+// on one thread or two (over 4096 faces the raster works through its ranges on both).
+TEST(SupportModel, OneModelOfAMeshGivesEstimateSupportsBitsInEveryPose) {
+  const Surface m = test::refined(test::mushroom(), 2);
+  ASSERT_GT(m.F.rows(), 4096);
+  const SupportModel model(m.F, m.V.rows());
+  for (const Vector3d& d : {Vector3d(0, 0, 1), Vector3d(0.3, -0.2, 1), Vector3d(1, 0, 0.2)})
+    for (int threads : {1, 2}) {
+      SupportModelOptions o;
+      o.print_direction = d;
+      o.threads = threads;
+      const Surface moved = test::transformed(m, Eigen::Matrix3d::Identity(), Vector3d(threads, 0.5, 0));
+      const SupportEstimate a = model.estimate(moved.V, o), b = estimate_support(moved, o);
+      EXPECT_GT(a.volume_mm3, 0.0);
+      EXPECT_EQ(a.volume_mm3, b.volume_mm3) << d.transpose() << " " << threads;
+      EXPECT_EQ(a.phase_mm3, b.phase_mm3);
+      EXPECT_EQ(a.layer_mm3, b.layer_mm3);
+    }
+  Triangles bad = m.F;
+  bad(3, 1) = static_cast<int>(m.V.rows());
+  EXPECT_THROW(SupportModel(bad, m.V.rows()), std::invalid_argument);
+  EXPECT_THROW(model.estimate(m.V.topRows(m.V.rows() - 1)), std::invalid_argument);
+  Points nan = m.V;
+  nan(0, 0) = NAN;
+  EXPECT_THROW(model.estimate(nan), std::invalid_argument);
+}
+
 TEST(SupportModel, RejectsBadInput) {
   SupportModelOptions o;
   EXPECT_THROW(estimate_support(Surface{}, o), std::invalid_argument);
