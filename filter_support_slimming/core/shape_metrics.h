@@ -65,12 +65,14 @@ ShapeChange shape_change(const Surface& input, const Surface& result, const Shap
 
 // The crease share of many results of one input, measured again and again (the optimizer's check
 // on every iterate): the input's interior manifold edges, their lengths and dihedral angles are
-// found once; each measure() then costs O(#V + #F + #E), no sort.
+// found once; share_pct() then costs O(#V + #F + #E), on the OpenMP threads; measure() adds the
+// percentile's sort of the edges' changes.
 //   CreaseMeter meter(input, options);     // input as for shape_change
 //   meter.measure(result_V, out);           // #V by 3 (mm), the input's faces: fills out's
 //                                           // crease_share_pct, crease_p99_deg, max_crease_deg,
 //                                           // interior_edges as shape_change() does
-//   meter.share_pct(result_V)               // crease_share_pct alone (%)
+//   meter.share_pct(result_V)               // crease_share_pct alone (%), the same value but
+//                                           // for an edge within rounding of the threshold
 // Throws std::invalid_argument as shape_change() does (a bad threshold, a result of another size).
 class CreaseMeter {
  public:
@@ -86,6 +88,7 @@ class CreaseMeter {
   ShapeChangeOptions options_;
   std::vector<DihedralEdge> edges_;  // the input's, with their angles
   std::vector<double> length_;       // the input's edge lengths (mm)
+  std::vector<double> cos_in_, sin_in_;  // of the input's angles
 };
 
 

@@ -21,6 +21,7 @@ Eigen::Vector3d face_cross(const Surface& s, Eigen::Index f) {
 
 Points face_normals(const Surface& s) {
   Points n(s.F.rows(), 3);
+#pragma omp parallel for schedule(static) if (s.F.rows() > 65536)
   for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
     const Eigen::Vector3d c = face_cross(s, f);
     const double len = c.norm();

@@ -166,6 +166,18 @@ TEST(ShapeMetrics, OneCreaseMeterMeasuresManyResultsAsTheyAre) {
     EXPECT_NEAR(c.max_crease_deg, std::abs(degrees), 1e-9) << degrees;
     EXPECT_EQ(c.interior_edges, 2 * n * (n - 1) + n * n);
   }
+  // A ball bent at random: the share without the angles is the share with them.
+  const Surface ball = test::icosphere(3);
+  const CreaseMeter ball_meter(ball);
+  for (unsigned seed : {1u, 2u, 3u}) {
+    Surface bent = ball;
+    bent.V += 0.4 * Points::Random(ball.V.rows(), 3) * seed;
+    ShapeChange c;
+    ball_meter.measure(bent.V, c);
+    EXPECT_GT(c.crease_share_pct, 1.0) << seed;
+    EXPECT_NEAR(ball_meter.share_pct(bent.V), c.crease_share_pct, 1e-9) << seed;
+    EXPECT_NEAR(c.crease_share_pct, shape_change(ball, bent).crease_share_pct, 1e-12) << seed;
+  }
   // A result face squashed to no area drops its three edges from the measure.
   Surface squashed = in;
   squashed.V.row(in.F(0, 1)) = squashed.V.row(in.F(0, 0));
