@@ -24,7 +24,7 @@ SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& r,
   f.volume_change_pct = shape.volume_change_pct;
   f.crease_share_pct = shape.crease_share_pct;
   f.crease_p99_deg = shape.crease_p99_deg;
-  f.hausdorff_mm = surface_distance(before, r.surface).hausdorff_mm;
+  f.hausdorff_mm = hausdorff_of_moved(before, r.surface);  // the same mesh, moved
   f.hausdorff_pct = percent(f.hausdorff_mm, reference_diagonal);
   if (r.displacement.size() > 0) {
     f.max_displacement_mm = r.displacement.maxCoeff();

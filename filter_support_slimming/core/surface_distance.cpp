@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -45,6 +47,14 @@ UniformGrid face_grid(const Surface& s) {
   return grid;
 }
 
+// The distance from q to the surface `to` whose faces fill `grid`.
+double distance_to(const Eigen::Vector3d& q, const Surface& to, const UniformGrid& grid) {
+  double best = HUGE_VAL;
+  grid.nearest(q, [&](int f) { return (closest_on_triangle(q, corner(to, f, 0), corner(to, f, 1), corner(to, f, 2)) - q).norm(); },
+               best);
+  return best;
+}
+
 // The largest and mean distance from the samples of `from` to the surface `to`.
 void one_way(const Surface& from, const Surface& to, double& largest, double& mean) {
   const Points P = samples(from);
@@ -52,17 +62,36 @@ void one_way(const Surface& from, const Surface& to, double& largest, double& me
   const Eigen::Index n = P.rows();
   std::vector<double> d(static_cast<size_t>(n));
 #pragma omp parallel for schedule(dynamic, 1024)
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector3d q = P.row(i).transpose();
-    double best = HUGE_VAL;
-    grid.nearest(q, [&](int f) { return (closest_on_triangle(q, corner(to, f, 0), corner(to, f, 1), corner(to, f, 2)) - q).norm(); },
-                 best);
-    d[static_cast<size_t>(i)] = best;
-  }
+  for (Eigen::Index i = 0; i < n; ++i) d[static_cast<size_t>(i)] = distance_to(P.row(i).transpose(), to, grid);
   largest = n > 0 ? *std::max_element(d.begin(), d.end()) : 0.0;
   double sum = 0.0;
   for (double x : d) sum += x;  // in order: the same bits on any thread count
   mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
+}
+
+// The largest distance from the samples P of one surface to the surface `to`, whose samples Q
+// are their moved copies: the samples in order of how far they moved, searched in blocks until a
+// block starts below the largest distance found. The largest of exact distances: the same value
+// on any thread count.
+double largest_one_way(const Points& P, const Points& Q, const Surface& to) {
+  const Eigen::Index n = P.rows();
+  std::vector<std::pair<double, Eigen::Index>> moved(static_cast<size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) moved[static_cast<size_t>(i)] = {(P.row(i) - Q.row(i)).norm(), i};
+  std::sort(moved.begin(), moved.end(), [](const auto& x, const auto& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); });
+  const UniformGrid grid = face_grid(to);
+  constexpr Eigen::Index kBlock = 4096;
+  double largest = 0.0;
+  for (Eigen::Index start = 0; start < n && moved[static_cast<size_t>(start)].first > largest; start += kBlock) {
+    const Eigen::Index end = std::min(n, start + kBlock);
+    std::vector<double> d(static_cast<size_t>(end - start), 0.0);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (Eigen::Index k = start; k < end; ++k) {
+      const auto& [bound, i] = moved[static_cast<size_t>(k)];
+      if (bound > largest) d[static_cast<size_t>(k - start)] = distance_to(P.row(i).transpose(), to, grid);
+    }
+    for (double x : d) largest = std::max(largest, x);
+  }
+  return largest;
 }
 
 }  // namespace
@@ -116,6 +145,16 @@ SurfaceDistance surface_distance(const Surface& a, const Surface& b) {
   one_way(b, a, d.b_to_a_max_mm, d.b_to_a_mean_mm);
   d.hausdorff_mm = std::max(d.a_to_b_max_mm, d.b_to_a_max_mm);
   return d;
+}
+
+double hausdorff_of_moved(const Surface& a, const Surface& b) {
+  check_surface(a);
+  check_surface(b);
+  if (a.V.rows() != b.V.rows() || a.F.rows() != b.F.rows() || a.F != b.F)
+    throw std::invalid_argument("Hausdorff distance of a moved mesh: the two surfaces are not one mesh");
+  if (a.F.rows() == 0) return 0.0;
+  const Points P = samples(a), Q = samples(b);
+  return std::max(largest_one_way(P, Q, b), largest_one_way(Q, P, a));
 }
 
 }  // namespace slim

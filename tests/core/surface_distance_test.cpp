@@ -72,3 +72,24 @@ TEST(SurfaceDistance, KnownDistances) {
   const Surface big = test::transformed(s, 1.03 * Eigen::Matrix3d::Identity(), -0.03 * Eigen::Vector3d(0, 0, 10));
   EXPECT_NEAR(surface_distance(s, big).hausdorff_mm, 0.3, 0.02);
 }
+
+// The figures' Hausdorff distance of a mesh and its moved copy searches only the samples that moved
+// most: the same value as the full search, on smooth and rough motions, large and small.
+TEST(SurfaceDistance, MovedMeshSearchEqualsTheFullSearch) {
+  const Surface ball = test::icosphere(3, 10.0);
+  std::mt19937 gen(5);
+  std::normal_distribution<double> g;
+  for (double amount : {0.0, 0.05, 0.5, 3.0}) {
+    Surface moved = ball;
+    for (Eigen::Index v = 0; v < ball.V.rows(); ++v) {
+      const double bulge = std::max(0.0, ball.V(v, 2) - 12.0);  // a smooth dent on one side
+      moved.V.row(v) += amount * (bulge * Eigen::RowVector3d(0.3, 0, -1) + 0.1 * Eigen::RowVector3d(g(gen), g(gen), g(gen)));
+    }
+    // Unmoved, the full search finds the rounding of the closest points (1e-15); the moved search none.
+    EXPECT_NEAR(hausdorff_of_moved(ball, moved), surface_distance(ball, moved).hausdorff_mm, amount > 0 ? 0.0 : 1e-12)
+        << amount;
+  }
+  const Surface box = test::box({0, 0, 0}, {10, 10, 10});
+  EXPECT_DOUBLE_EQ(hausdorff_of_moved(box, test::transformed(box, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 2))), 2.0);
+  EXPECT_THROW(hausdorff_of_moved(ball, test::icosphere(2, 10.0)), std::invalid_argument);
+}
