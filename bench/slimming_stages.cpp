@@ -108,8 +108,8 @@ int main(int argc, char** argv) {
     const auto& s = r.stage_seconds;
     std::printf("end to end, defaults, %ld faces: median %.2f s of %d runs; last run: %d iterations (returned %d); "
                 "domain %.2f, embedding %.2f, factor %.2f, local %.2f, global %.2f, guards and statistics %.2f, "
-                "support model %.2f s\n", static_cast<long>(big.F.rows()), median(total), runs, r.iterations_run, r.iterations,
-                s.domain, s.embedding, s.factorization, s.local, s.global, s.measure, s.support_model);
+                "support model %.2f, crease limit %.2f s\n", static_cast<long>(big.F.rows()), median(total), runs, r.iterations_run,
+                r.iterations, s.domain, s.embedding, s.factorization, s.local, s.global, s.measure, s.support_model, s.creases);
     std::printf("peak memory (VmHWM): %ld MB\n", peak_rss_mb());
   }
   return 0;

@@ -23,19 +23,27 @@ struct HalfEdge {
   bool forward;
 };
 
+// Sorted by (lo, hi, face): a counting sort by the lower vertex, then each vertex's few half-edges
+// (one std::sort of them all took most of a crease meter's set-up at 940k faces).
 std::vector<HalfEdge> sorted_half_edges(const Triangles& F) {
-  std::vector<HalfEdge> h;
-  h.reserve(static_cast<size_t>(F.rows()) * 3);
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+  const int vertices = F.size() > 0 ? F.maxCoeff() + 1 : 0;
+  std::vector<int> begin(static_cast<size_t>(vertices) + 1, 0);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = F(f, k), b = F(f, (k + 1) % 3);
-      if (a == b) continue;
-      h.push_back({std::min(a, b), std::max(a, b), static_cast<int>(f), a < b});
+      if (a != b) ++begin[static_cast<size_t>(std::min(a, b)) + 1];
     }
-  }
-  std::sort(h.begin(), h.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.face < y.face;
-  });
+  for (int v = 0; v < vertices; ++v) begin[static_cast<size_t>(v) + 1] += begin[static_cast<size_t>(v)];
+  std::vector<HalfEdge> h(static_cast<size_t>(begin.back()));
+  std::vector<int> fill(begin.begin(), begin.end() - 1);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)  // faces ascending: each vertex's list is in face order
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      if (a != b) h[static_cast<size_t>(fill[static_cast<size_t>(std::min(a, b))]++)] = {std::min(a, b), std::max(a, b), static_cast<int>(f), a < b};
+    }
+  for (int v = 0; v < vertices; ++v)
+    std::stable_sort(h.begin() + begin[static_cast<size_t>(v)], h.begin() + begin[static_cast<size_t>(v) + 1],
+                     [](const HalfEdge& x, const HalfEdge& y) { return x.hi < y.hi; });
   return h;
 }
 

@@ -111,12 +111,18 @@ std::string iterate(SupportSlimmer& slimmer, const Surface& input, const Support
                     const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
   const double max_crease = coherence_of(o).max_crease_share_pct;
   IterateChoice choice(r.history.front(), max_crease);
+  auto crease_started = std::chrono::steady_clock::now();
   const std::optional<CreaseMeter> creases = max_crease > 0.0 ? std::make_optional<CreaseMeter>(input) : std::nullopt;
+  r.stage_seconds.creases += seconds_since(crease_started);
   for (int it = 1; it <= o.max_iterations; ++it) {
     r.iterations_run = it;
     IterationStats st = slimmer.step();
     st.iteration = it;
-    if (creases) st.crease_share_pct = creases->share_pct(slimmer.surface_positions());
+    if (creases) {
+      crease_started = std::chrono::steady_clock::now();
+      st.crease_share_pct = creases->share_pct(slimmer.surface_positions());
+      r.stage_seconds.creases += seconds_since(crease_started);
+    }
     if (r.support_before_mm3 > 0.0) {
       const auto started = std::chrono::steady_clock::now();
       st.support_estimate = support_estimate(model, slimmer.surface_positions(), o, std::nan(""));

@@ -202,6 +202,7 @@ struct SlimmingStageSeconds {  // wall time per stage, summed over iterations
   double global = 0.0;          // right-hand sides and back-substitutions
   double measure = 0.0;         // the step guards, write-back to the surface and the statistics
   double support_model = 0.0;   // the support model's estimate of every iterate (choose_by_support_model)
+  double creases = 0.0;         // the crease share of every iterate (max_crease_share_pct)
 };
 
 struct SlimmingResult {
