@@ -31,20 +31,25 @@ class IterateChoice {
 
   bool offer(const IterationStats& s) {
     // An iterate the model could not measure (NaN) never qualifies.
-    const bool qualifies = s.risky_area <= input_risky_ && !(by_model_ && std::isnan(s.support_estimate)) &&
-                           !(max_crease_ > 0.0 && s.crease_share_pct > max_crease_);
+    const bool creased = max_crease_ > 0.0 && s.crease_share_pct > max_crease_;
+    const bool qualifies = s.risky_area <= input_risky_ && !(by_model_ && std::isnan(s.support_estimate)) && !creased;
     const double need = support(s);
+    if (creased && need < best_support_) ++passed_over_;
     if (!qualifies || !(need < best_support_ || (need == best_support_ && s.risky_area <= best_risky_))) return false;
     best_support_ = need;
     best_risky_ = s.risky_area;
     return true;
   }
 
+  // Iterates that needed less support than the best so far but creased past the limit.
+  int passed_over() const { return passed_over_; }
+
  private:
   double support(const IterationStats& s) const { return by_model_ ? s.support_estimate : s.shadow_volume; }
 
   bool by_model_;
   double max_crease_;
+  int passed_over_ = 0;
   double input_risky_, best_support_, best_risky_;
 };
 

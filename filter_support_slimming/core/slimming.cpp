@@ -106,6 +106,15 @@ double support_estimate(const SupportModel* model, const Points& V, const Slimmi
   }
 }
 
+// What the crease limit did, for the stop reason: "" when it turned no better iterate away.
+std::string crease_note(const IterateChoice& choice, double limit) {
+  if (choice.passed_over() == 0) return "";
+  char note[160];
+  std::snprintf(note, sizeof note, "; %d iterate%s that needed less support creased more than the limit (%.3g%% of the edge length)",
+                choice.passed_over(), choice.passed_over() == 1 ? "" : "s", limit);
+  return note;
+}
+
 // The iterations under the stopping rule; the best iterate goes into r.
 std::string iterate(SupportSlimmer& slimmer, const Surface& input, const SupportModel* model, const SlimmingOptions& o,
                     const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
@@ -138,10 +147,11 @@ std::string iterate(SupportSlimmer& slimmer, const Surface& input, const Support
       r.iterations = it;
     }
     report(0.1 + 0.9 * it / o.max_iterations, "iteration " + std::to_string(it) + ": risky area " + std::to_string(st.risky_area));
-    if (!slimmer.guard_stop().empty()) return slimmer.guard_stop();
-    if (previous_deficit - st.risky_deficit < o.stall_tolerance * r.before.risky_deficit) return "overhangs stopped improving";
+    if (!slimmer.guard_stop().empty()) return slimmer.guard_stop() + crease_note(choice, max_crease);
+    if (previous_deficit - st.risky_deficit < o.stall_tolerance * r.before.risky_deficit)
+      return "overhangs stopped improving" + crease_note(choice, max_crease);
   }
-  return "iteration limit reached";
+  return "iteration limit reached" + crease_note(choice, max_crease);
 }
 
 // The run itself, on a surface whose normals point out of the part.

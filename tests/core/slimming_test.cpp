@@ -140,6 +140,10 @@ TEST(Slimming, ArchOpeningIsSlimmedWithinTheCreaseLimit) {
   EXPECT_LT(limited.support_after_mm3, 0.95 * limited.support_before_mm3);
   EXPECT_LT(free.support_after_mm3, limited.support_after_mm3);
   for (const IterationStats& st : limited.history) EXPECT_EQ(st.inverted_tets, 0) << st.iteration;
+  // The stop reason says what the limit turned away; the free run has nothing to say.
+  EXPECT_NE(limited.stop_reason.find("creased more than the limit (2.5% of the edge length)"), std::string::npos)
+      << limited.stop_reason;
+  EXPECT_EQ(free.stop_reason.find("crease"), std::string::npos) << free.stop_reason;
 }
 
 TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
