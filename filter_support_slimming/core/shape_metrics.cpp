@@ -96,6 +96,12 @@ double weighted_quantile(const std::vector<double>& values, const std::vector<do
   return values[order.back()];
 }
 
+void require_same_vertex_count(Eigen::Index input, Eigen::Index result) {
+  if (input != result)
+    throw std::invalid_argument("shape change: the input has " + std::to_string(input) + " vertices, the result " +
+                                std::to_string(result) + ": not the same mesh");
+}
+
 }  // namespace
 
 std::vector<DihedralEdge> dihedral_edges(const Surface& s) {
@@ -122,9 +128,7 @@ CreaseMeter::CreaseMeter(const Surface& input, const ShapeChangeOptions& options
 }
 
 void CreaseMeter::changes(const Points& V, std::vector<double>& change, std::vector<char>& measured) const {
-  if (V.rows() != vertices_)
-    throw std::invalid_argument("shape change: the input has " + std::to_string(vertices_) + " vertices, the result " +
-                                std::to_string(V.rows()) + ": not the same mesh");
+  require_same_vertex_count(vertices_, V.rows());
   const Surface result{V, F_};
   const Points n = face_normals(result);
   change.assign(edges_.size(), 0.0);
@@ -159,9 +163,7 @@ void CreaseMeter::measure(const Points& V, ShapeChange& out) const {
 }
 
 double CreaseMeter::share_pct(const Points& V) const {
-  if (V.rows() != vertices_)
-    throw std::invalid_argument("shape change: the input has " + std::to_string(vertices_) + " vertices, the result " +
-                                std::to_string(V.rows()) + ": not the same mesh");
+  require_same_vertex_count(vertices_, V.rows());
   // As measure(), without the percentile's sort, and without an angle: the change exceeds the
   // threshold T exactly when the cosine of the difference of the two angles, from their sines
   // and cosines, is below cos T (the change lies in [0, 180]).
@@ -190,9 +192,7 @@ double CreaseMeter::share_pct(const Points& V) const {
 ShapeChange shape_change(const Surface& input, const Surface& result, const ShapeChangeOptions& options) {
   check_surface(input);
   check_surface(result);
-  if (input.V.rows() != result.V.rows())
-    throw std::invalid_argument("shape change: the input has " + std::to_string(input.V.rows()) + " vertices, the result " +
-                                std::to_string(result.V.rows()) + ": not the same mesh");
+  require_same_vertex_count(input.V.rows(), result.V.rows());
   if (input.F.rows() != result.F.rows() || input.F != result.F)
     throw std::invalid_argument("shape change: the input and the result do not have the same faces");
   const CreaseMeter meter(input, options);

@@ -98,10 +98,15 @@ PixelGrid raster_grid(const Surface& s, const SupportModelOptions& o) {
   return g;
 }
 
-SupportEstimate estimate_with(const Surface& surface, const FaceAdjacency& adjacency, const SupportModelOptions& o) {
+// What every estimate checks first: the options, the positions and indices, some faces.
+void check_input(const Surface& surface, const SupportModelOptions& o) {
   check_options(o);
   check_surface(surface);
   require(surface.F.rows() > 0, "the surface has no faces");
+}
+
+// The estimate of a surface whose options and faces the caller has checked (check_input).
+SupportEstimate estimate_with(const Surface& surface, const FaceAdjacency& adjacency, const SupportModelOptions& o) {
   const auto offsets = phase_offsets(o.pixels_per_cell, o.grid_phases);
   const GridSweepSettings settings = sweep_settings(o);
   OverhangRule rule;
@@ -182,13 +187,13 @@ SupportModel::SupportModel(SupportModel&&) noexcept = default;
 SupportEstimate SupportModel::estimate(const Points& V, const SupportModelOptions& o) const {
   require(V.rows() == impl_->vertices, "the positions have " + std::to_string(V.rows()) + " rows for a mesh of " +
                                            std::to_string(impl_->vertices) + " vertices");
-  return estimate_with(Surface{V, impl_->F}, impl_->adjacency, o);
+  const Surface surface{V, impl_->F};
+  check_input(surface, o);
+  return estimate_with(surface, impl_->adjacency, o);
 }
 
 SupportEstimate estimate_support(const Surface& surface, const SupportModelOptions& o) {
-  check_options(o);
-  check_surface(surface);
-  require(surface.F.rows() > 0, "the surface has no faces");
+  check_input(surface, o);
   return estimate_with(surface, FaceAdjacency(surface), o);
 }
 
