@@ -46,8 +46,9 @@ if [ "${#need[@]}" -gt 0 ]; then
 fi
 
 # name | kind | package | file in the package | print direction in the file's frame | licence
-# [| mend: "orient-faces" turns the few faces that disagree with their neighbours (slim-eval
-#   prepare --orient-faces yes); the judge, like the CLI, refuses such a mesh]
+# [| mend: "orient-faces" turns the few faces that disagree with their neighbours and leaves out
+#   faces that name one vertex twice (slim-eval prepare --orient-faces yes); the judge, like the
+#   CLI, refuses such a mesh]
 MODELS=(
   "bunny|organic|npm:bunny|(data/bunny.ply, turned +Z up by setup)|0,0,1|public domain (Stanford 3D Scanning Repository)"
   "bunny_70k|organic|glmark2-data|usr/share/glmark2/models/bunny.obj|0,1,0|GPL-3+"

@@ -41,10 +41,21 @@ std::vector<int> pieces(OMesh& m) {
   return label;
 }
 
+// The faces that name three different vertices, in order.
+Surface without_repeated_vertices(const Surface& s) {
+  Surface out{s.V, Triangles(s.F.rows(), 3)};
+  Eigen::Index kept = 0;
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f)
+    if (s.F(f, 0) != s.F(f, 1) && s.F(f, 1) != s.F(f, 2) && s.F(f, 2) != s.F(f, 0)) out.F.row(kept++) = s.F.row(f);
+  out.F.conservativeResize(kept, 3);
+  return out;
+}
+
 }  // namespace
 
-OrientedFaces orient_faces(const Surface& s) {
-  check_surface(s);
+OrientedFaces orient_faces(const Surface& input) {
+  check_surface(input);
+  const Surface s = without_repeated_vertices(input);
   OMesh m;
   vcg::tri::Allocator<OMesh>::AddVertices(m, static_cast<size_t>(s.V.rows()));
   for (Eigen::Index v = 0; v < s.V.rows(); ++v) m.vert[v].P() = vcg::Point3d(s.V(v, 0), s.V(v, 1), s.V(v, 2));
@@ -56,6 +67,7 @@ OrientedFaces orient_faces(const Surface& s) {
   vcg::tri::Clean<OMesh>::OrientCoherentlyMesh(m, oriented, orientable);
 
   OrientedFaces out;
+  out.dropped = input.F.rows() - s.F.rows();
   out.orientable = orientable;
   out.surface = s;
   for (Eigen::Index f = 0; f < s.F.rows(); ++f)

@@ -25,7 +25,7 @@ const char* kUsage = R"(usage:
       MM (default 60; 0 keeps the scale), resting on z = 0, centred on the Z axis. Writes
       OUT_BASE.ply. Prints scale, size, diag, vertices, faces. With --orient-faces yes, faces that
       disagree with their neighbours are turned first, each piece outward (orient_faces.h), and
-      flipped_faces says how many.
+      flipped_faces says how many; faces that name one vertex twice are left out (dropped_faces).
   slim-eval measure MESH [--angle DEG] [--plate-tolerance MM] [--reference REF] [--stl OUT.stl]
                          [--overhang-ply OUT.ply] [--displacement-vtk OUT.vtk]
       Risky area and the support proxy (shadow volume, overhang.h) with +Z up, area, volume, bbox;
@@ -124,7 +124,7 @@ int prepare(const Args& a) {
     const slim::eval::OrientedFaces o = slim::eval::orient_faces(in);
     if (!o.orientable) die(a.positional[0] + " has a non-orientable piece: its faces cannot all agree");
     in = o.surface;
-    std::cout << "flipped_faces=" << o.flipped << "\n";
+    std::cout << "flipped_faces=" << o.flipped << "\ndropped_faces=" << o.dropped << "\n";
   }
   const slim::eval::PrintFrame frame = slim::eval::to_print_frame(in, dir, size);
   slim::vcgx::save_surface(a.positional[1] + ".ply", frame.surface);

@@ -219,5 +219,32 @@ TEST(OrientFaces, TurnsTheFacesThatDisagreeAndEachPieceOutward) {
   const Surface t = test::t_shape();
   const eval::OrientedFaces same = eval::orient_faces(t);
   EXPECT_EQ(same.flipped, 0);
+  EXPECT_EQ(same.dropped, 0);
   EXPECT_EQ(same.surface.F, t.F);
+}
+
+TEST(OrientFaces, LeavesOutFacesThatNameAVertexTwice) {
+  // A box with its 7th face turned over, and two faces collapsed onto an edge (an STL's slivers
+  // read so once their corners are welded) before its 5th face and after its last: VCG alone
+  // calls such a mesh non-orientable.
+  const Surface box = test::box({0, 0, 0}, {1, 1, 1});
+  const Eigen::Index n = box.F.rows();
+  Surface s{box.V, Triangles(n + 2, 3)};
+  s.F.topRows(4) = box.F.topRows(4);
+  s.F.row(4) << box.F(0, 0), box.F(0, 1), box.F(0, 1);
+  s.F.middleRows(5, n - 4) = box.F.bottomRows(n - 4);
+  s.F.row(n + 1) << box.F(3, 2), box.F(3, 2), box.F(3, 0);
+  std::swap(s.F(7, 1), s.F(7, 2));  // the box's face 6
+  const eval::OrientedFaces o = eval::orient_faces(s);
+  EXPECT_TRUE(o.orientable);
+  EXPECT_EQ(o.dropped, 2);
+  EXPECT_EQ(o.flipped, 1);
+  ASSERT_EQ(o.surface.F.rows(), n);
+  EXPECT_EQ(edge_topology(o.surface).flipped_edges, 0);
+  EXPECT_EQ(edge_topology(o.surface).open_edges, 0);
+  EXPECT_NEAR(signed_volume(o.surface), 1.0, 1e-12);
+  for (Eigen::Index f = 0; f < n; ++f)  // the other faces as they were, in order
+    if (f != 6) {
+      EXPECT_EQ(o.surface.F.row(f), box.F.row(f)) << f;
+    }
 }
