@@ -2,8 +2,10 @@
 // subcommand each; "key=value" lines on stdout, a one-line reason and exit 1 on bad input.
 //
 //   support_model_tool estimate MESH [--angle DEG] [--phases N] [--turns N] [--pixels N] [--layers]
+//                                    [--open-slices 0|1] [--slice-gap MM]
 //       The model's estimate for MESH as printed in its own frame (+Z up), part by part (and with
-//       --layers, layer by layer: "layer J MM3"), and the mesh's open and non-manifold edges.
+//       --layers, layer by layer: "layer J MM3"), and the mesh's open and non-manifold edges;
+//       --open-slices 0 reads an open mesh along rays, as the model did before it sliced them.
 //   support_model_tool turn MESH DEG OUT.stl
 //       MESH turned by DEG about +Z through its bounding-box centre, resting on z = 0, as STL:
 //       the same part against another grid angle and phase.
@@ -43,6 +45,8 @@ int estimate(int argc, char** argv) {
     else if (k == "--pixels") o.pixels_per_cell = std::atoi(v);
     else if (k == "--creases") o.bottom_creases = std::atoi(v) != 0;
     else if (k == "--tips") o.lowest_points = std::atoi(v) != 0;
+    else if (k == "--open-slices") o.open_mesh_slices = std::atoi(v) != 0;
+    else if (k == "--slice-gap") o.slice_max_gap = std::atof(v);
     else throw std::invalid_argument("unknown option " + k);
   }
   const slim::Surface surface = slim::vcgx::load_surface(argv[2]);

@@ -38,6 +38,7 @@ void check_options(const SupportModelOptions& o) {
   const int n = o.pixels_per_cell;
   require(o.grid_phases == 1 || o.grid_phases == n || o.grid_phases == n * n, "grid phases must be 1, pixels_per_cell or its square");
   require(o.turns >= 1 && o.turns <= 90, "turns must lie in [1, 90]");
+  require(o.slice_max_gap >= 0 && o.slice_max_gap < 1000, "the slice gap to close must lie in [0, 1000) mm");
 }
 
 GridSweepSettings sweep_settings(const SupportModelOptions& o) {
@@ -105,8 +106,14 @@ void check_input(const Surface& surface, const SupportModelOptions& o) {
   require(surface.F.rows() > 0, "the surface has no faces");
 }
 
+// Whether some edge of the faces is used by one face only: a hole, which the slicer's slices read
+// otherwise than rays do.
+bool has_open_edges(const Triangles& faces, Eigen::Index vertices) {
+  return edge_topology(Surface{Points::Zero(vertices, 3), faces}).open_edges > 0;
+}
+
 // The estimate of a surface whose options and faces the caller has checked (check_input).
-SupportEstimate estimate_with(const Surface& surface, const FaceAdjacency& adjacency, const SupportModelOptions& o) {
+SupportEstimate estimate_with(const Surface& surface, const FaceAdjacency& adjacency, bool open, const SupportModelOptions& o) {
   const auto offsets = phase_offsets(o.pixels_per_cell, o.grid_phases);
   const GridSweepSettings settings = sweep_settings(o);
   OverhangRule rule;
@@ -116,6 +123,8 @@ SupportEstimate estimate_with(const Surface& surface, const FaceAdjacency& adjac
   rule.first_layer_height = o.first_layer_height;
   rule.creases = o.bottom_creases;
   rule.tips = o.lowest_points;
+  rule.slices = open && o.open_mesh_slices;
+  rule.slice_max_gap = o.slice_max_gap;
   const ThreadScope threads(o.threads);
   SupportEstimate est;
   std::vector<GridSweepResult> runs;
@@ -171,7 +180,9 @@ struct SupportModel::Impl {
   Triangles F;
   Eigen::Index vertices;
   FaceAdjacency adjacency;
-  Impl(const Triangles& faces, Eigen::Index n) : F(checked_faces(faces, n)), vertices(n), adjacency(faces, n, true) {}
+  bool open;
+  Impl(const Triangles& faces, Eigen::Index n)
+      : F(checked_faces(faces, n)), vertices(n), adjacency(faces, n, true), open(has_open_edges(faces, n)) {}
   // The faces' indices checked before the adjacency reads them (positions come later).
   static const Triangles& checked_faces(const Triangles& faces, Eigen::Index n) {
     check_surface(Surface{Points::Zero(n, 3), faces});
@@ -189,12 +200,12 @@ SupportEstimate SupportModel::estimate(const Points& V, const SupportModelOption
                                            std::to_string(impl_->vertices) + " vertices");
   const Surface surface{V, impl_->F};
   check_input(surface, o);
-  return estimate_with(surface, impl_->adjacency, o);
+  return estimate_with(surface, impl_->adjacency, impl_->open, o);
 }
 
 SupportEstimate estimate_support(const Surface& surface, const SupportModelOptions& o) {
   check_input(surface, o);
-  return estimate_with(surface, FaceAdjacency(surface), o);
+  return estimate_with(surface, FaceAdjacency(surface), has_open_edges(surface.F, surface.V.rows()), o);
 }
 
 }  // namespace slim

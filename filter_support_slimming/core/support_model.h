@@ -35,10 +35,14 @@
 //     boundaries inside islands joined by links, dense interface layers under overhangs that reach
 //     beyond dense_interface_overhang and where a column lands on the part, and a first layer
 //     grown by first_layer_expansion at first_layer_density.
+//   - Open meshes (a face's edge shared by no other face: a hole), as PrusaSlicer slices them:
+//     slice by slice, each slice's open chains joined across gaps up to slice_max_gap and the rest
+//     dropped, so a hole wider than that empties the slices through it, and the slice above stands
+//     on nothing (layer_slices.h, slice_raster.h). A closed mesh is read along rays, with the
+//     same result.
 //   - Not modelled: PrusaSlicer's "don't support bridges" (it leaves out the middle of flat
 //     bottoms anchored at their sides; organic parts have almost none), support enforcers and
-//     blockers, and how a slicer repairs an open mesh before slicing it (here: nonzero winding of
-//     the faces as they are).
+//     blockers.
 //
 // Resolution: a ray raster along the print direction with pixels of grid_spacing /
 // pixels_per_cell (0.71 mm by default): the part's solid along each pixel's vertical ray (exact at
@@ -103,6 +107,8 @@ struct SupportModelOptions {
   bool sheath = true;                 // a loop around every island of the base layers
   bool bottom_creases = true;         // keel ridges and other bottom creases need support
   bool lowest_points = true;          // a vertex below all its neighbours needs support
+  bool open_mesh_slices = true;       // an open mesh read slice by slice (false: along rays)
+  double slice_max_gap = 2.0;         // mm: the gaps the slicer closes in an open mesh's slices
   // The model.
   int pixels_per_cell = 4;            // raster pixels along a grid cell, >= 1
   int grid_phases = 4;                // 1, pixels_per_cell or pixels_per_cell²

@@ -9,6 +9,7 @@
 
 #include "core/face_adjacency.h"
 #include "core/parallel_for.h"
+#include "core/slice_raster.h"
 #include "core/triangle_cells.h"
 #include "core/union_find.h"
 
@@ -354,12 +355,14 @@ SupportRaster build_support_raster(const Surface& s, const FaceAdjacency& adj, c
     throw std::invalid_argument("support raster: the overhang slope must lie in (0, 90] degrees");
   SupportRaster out;
   out.grid = g;
-  rasterize_solid(s, g, out);
+  if (rule.slices) rasterize_slices(s, adj, rule, out);
+  else rasterize_solid(s, g, out);
   const LayerVoxels voxels(g, rule, s.V.col(2).maxCoeff());
   const std::vector<char> kind = overhanging_faces(s, adj, rule);
   using Part = std::vector<PixelOverhang>;
-  out.overhangs = gather_in_ranges<PixelOverhang>(
+  const Part faces = gather_in_ranges<PixelOverhang>(
       s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_overhangs(s, kind, rule, voxels, a, b, part); });
+  out.overhangs.insert(out.overhangs.end(), faces.begin(), faces.end());
   for (const Part& more :
        {rule.creases ? gather_in_ranges<PixelOverhang>(
                            s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_creases(s, adj, rule, voxels, a, b, part); })

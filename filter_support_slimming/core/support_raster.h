@@ -15,6 +15,9 @@
 //             vertical ray through its centre, sorted upwards: where the faces the ray crosses
 //             wind around it (nonzero rule, so an inside-out part reads the same). Rasterised
 //             watertight: a centre on a shared edge or vertex is counted by one face only.
+//             With rule.slices: where the slices at the slicer's slice heights (first_layer / 2,
+//             then first_layer + (k - 1/2) layer) wind around the centre, each run of layers
+//             k0..k1 as [slice(k0) - layer / 4, slice(k1) + layer / 4].
 //   overhangs for every pixel that an overhanging feature touches (its closed square overlaps the
 //             feature's projection: conservative, so the slicer's stretching of any contact to
 //             a whole grid cell is exact), the object layers the feature shows in there (layer
@@ -31,9 +34,13 @@
 //                 steep than max_slope_deg, whose tip in the slice moves out of the layer below
 //                 grown by layer_height / tan(max slope) with square corners (the first slices
 //                 of a keel are thin islands with nothing below them); dense past the dense reach;
-//               - a lowest vertex: below all its neighbours, on at least 3 faces; dense.
+//               - a lowest vertex: below all its neighbours, on at least 3 faces; dense;
+//               - with rule.slices, a slice above one that lost contours (dropped open chains):
+//                 its pixels that the lost contours, closed by a straight line, would have
+//                 filled in the slice below; dense, at that layer.
 //             A pixel may carry several overhangs (one per feature touching it).
-// Cost: O(#F + #pixels touched). Deterministic (serial).
+// Cost: O(#F + #pixels touched); with rule.slices also O(segments + pixels × layers). Deterministic:
+// the same on any thread count.
 #pragma once
 
 #include <vector>
@@ -59,6 +66,13 @@ struct OverhangRule {
                                   // layer_height / tan(max_slope_deg) is not seen by the slicer
   bool creases = true;            // bottom creases overhang (keels)
   bool tips = true;               // lowest vertices overhang
+  // How the solid is read. Along the rays (false): the faces each ray crosses, nonzero winding,
+  // exact for a closed mesh. Slice by slice (true), as the slicer cuts the part (layer_slices.h):
+  // for an open mesh, whose open chains the slicer closes across gaps up to slice_max_gap and
+  // otherwise drops; a dropped contour empties its slice, and the slicer supports the slice above
+  // it as a flat overhang. On a closed mesh both readings give the same spans.
+  bool slices = false;
+  double slice_max_gap = 2.0;     // mm (PrusaSlicer 2.5)
 };
 
 struct SolidSpan {

@@ -268,6 +268,8 @@ TEST(SupportModel, SameResultOnAnyThreadCountAndPrintDirection) {
   const SupportEstimate a = estimate_support(t, one), b = estimate_support(t, two);
   EXPECT_EQ(a.volume_mm3, b.volume_mm3);
   EXPECT_EQ(a.phase_mm3, b.phase_mm3);
+  const Surface open = test::box_with_windows(5.0);  // sliced layer by layer, in parallel
+  EXPECT_EQ(estimate_support(open, one).phase_mm3, estimate_support(open, two).phase_mm3);
   // The same part given upside down with the print direction -Z.
   SupportModelOptions down;
   down.print_direction = -Vector3d::UnitZ();
@@ -279,21 +281,26 @@ TEST(SupportModel, SameResultOnAnyThreadCountAndPrintDirection) {
 // poses: the faces' adjacency is found once, and every estimate is estimate_support's, bit for bit,
 // on one thread or two (over 4096 faces the raster works through its ranges on both).
 TEST(SupportModel, OneModelOfAMeshGivesEstimateSupportsBitsInEveryPose) {
-  const Surface m = test::refined(test::mushroom(), 2);
+  // A closed mesh large enough for the raster's parallel ranges, and an open one (read slice by
+  // slice: a box with a window in its side).
+  const Surface m = test::refined(test::mushroom(), 2), open = test::box_with_windows(5.0);
   ASSERT_GT(m.F.rows(), 4096);
+  for (const Surface* mesh : {&m, &open}) {
+    const SupportModel model(mesh->F, mesh->V.rows());
+    for (const Vector3d& d : {Vector3d(0, 0, 1), Vector3d(0.3, -0.2, 1), Vector3d(1, 0, 0.2)})
+      for (int threads : {1, 2}) {
+        SupportModelOptions o;
+        o.print_direction = d;
+        o.threads = threads;
+        const Surface moved = test::transformed(*mesh, Eigen::Matrix3d::Identity(), Vector3d(threads, 0.5, 0));
+        const SupportEstimate a = model.estimate(moved.V, o), b = estimate_support(moved, o);
+        EXPECT_GT(a.volume_mm3, 0.0);
+        EXPECT_EQ(a.volume_mm3, b.volume_mm3) << d.transpose() << " " << threads;
+        EXPECT_EQ(a.phase_mm3, b.phase_mm3);
+        EXPECT_EQ(a.layer_mm3, b.layer_mm3);
+      }
+  }
   const SupportModel model(m.F, m.V.rows());
-  for (const Vector3d& d : {Vector3d(0, 0, 1), Vector3d(0.3, -0.2, 1), Vector3d(1, 0, 0.2)})
-    for (int threads : {1, 2}) {
-      SupportModelOptions o;
-      o.print_direction = d;
-      o.threads = threads;
-      const Surface moved = test::transformed(m, Eigen::Matrix3d::Identity(), Vector3d(threads, 0.5, 0));
-      const SupportEstimate a = model.estimate(moved.V, o), b = estimate_support(moved, o);
-      EXPECT_GT(a.volume_mm3, 0.0);
-      EXPECT_EQ(a.volume_mm3, b.volume_mm3) << d.transpose() << " " << threads;
-      EXPECT_EQ(a.phase_mm3, b.phase_mm3);
-      EXPECT_EQ(a.layer_mm3, b.layer_mm3);
-    }
   Triangles bad = m.F;
   bad(3, 1) = static_cast<int>(m.V.rows());
   EXPECT_THROW(SupportModel(bad, m.V.rows()), std::invalid_argument);
@@ -313,6 +320,9 @@ TEST(SupportModel, RejectsBadInput) {
   EXPECT_THROW(estimate_support(test::t_shape(), o), std::invalid_argument);
   o = {};
   o.print_direction = Vector3d::Zero();
+  EXPECT_THROW(estimate_support(test::t_shape(), o), std::invalid_argument);
+  o = {};
+  o.slice_max_gap = -1.0;
   EXPECT_THROW(estimate_support(test::t_shape(), o), std::invalid_argument);
 }
 

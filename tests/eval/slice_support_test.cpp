@@ -13,6 +13,7 @@
 #include "key_values.h"
 #include "run_command.h"
 #include "support/shapes.h"
+#include "core/support_model.h"
 #include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
@@ -114,6 +115,40 @@ TEST(SliceSupport, BothSlicersSeeTheSameOverhang) {
   EXPECT_LT(cura, 2.0 * prusa);
   // PrusaSlicer's own total agrees with our sum of all extrusion.
   EXPECT_LT(parse_metrics(p.output).at("total_vs_slicer_pct"), 0.01);
+}
+
+TEST(SliceSupport, TheSupportModelReadsAnOpenMeshAsPrusaSlicerSlicesIt) {
+  // A 20 mm box with a window in its side from 6.25 to 13.75 mm. PrusaSlicer closes gaps up to
+  // 2 mm in a slice and drops the contours it cannot close: through a 5 mm window every slice is
+  // empty, and the box above stands on support down to the slice below the window. Two 1.25 mm
+  // windows are closed over: no support. Cura stitches wider gaps (up to 10 mm) and supports
+  // neither: the model's gap is PrusaSlicer's (SupportModelOptions::slice_max_gap).
+  const fs::path dir = scratch("slice_support_open");
+  SupportModelOptions at_slicer_phase;  // the quarter turns keep the slicer's grid phase
+  at_slicer_phase.grid_phases = 1;
+  at_slicer_phase.turns = 2;
+  for (const auto& [width, windows] : {std::pair<double, int>{5.0, 1}, std::pair<double, int>{1.25, 2}}) {
+    SCOPED_TRACE(width);
+    const Surface box = test::box_with_windows(width, windows);
+    const fs::path stl = dir / ("box_" + std::to_string(windows) + ".stl");
+    vcgx::save_surface(stl.string(), box);
+    const test::CommandRun p = slice(stl, "prusa", dir / ("prusa_" + std::to_string(windows)));
+    ASSERT_EQ(p.exit_code, 0) << p.output;
+    const double prusa = parse_metrics(p.output).at("support_mm3"), model = estimate_support(box, at_slicer_phase).volume_mm3;
+    if (windows == 2) {
+      EXPECT_LT(prusa, 1.0);
+      EXPECT_LT(model, 1.0);
+      continue;
+    }
+    EXPECT_GT(prusa, 1000.0);
+    EXPECT_NEAR(model / prusa, 1.0, 0.15) << model << " against " << prusa;
+    SupportModelOptions rays = at_slicer_phase;  // the faces as they are: no overhang at all
+    rays.open_mesh_slices = false;
+    EXPECT_LT(estimate_support(box, rays).volume_mm3, 1.0);
+    const test::CommandRun c = slice(stl, "cura", dir / "cura", "--turns 0");
+    ASSERT_EQ(c.exit_code, 0) << c.output;
+    EXPECT_LT(parse_metrics(c.output).at("support_mm3"), 0.05 * prusa);
+  }
 }
 
 TEST(SliceSupport, BadArgumentsFailWithAOneLineReason) {

@@ -1,7 +1,8 @@
 // write_shape NAME OUT [LEVELS]: writes one of the test shapes (tests/support/shapes.h) as a mesh
 // file, refined LEVELS times (default 0), so the evaluation tool can judge it like any mesh.
-// NAME: t, mushroom, arch, or a creature (tests/support/creatures.h: quadruped, long_neck,
-// upright). Exits 1 with a one-line reason on bad input.
+// NAME: t, mushroom, arch, window_box (a box with a 5 mm window in a side: an open mesh), or a
+// creature (tests/support/creatures.h: quadruped, long_neck, upright). Exits 1 with a one-line
+// reason on bad input.
 #include <algorithm>
 #include <cstdlib>
 #include <iostream>
@@ -13,7 +14,7 @@
 
 int main(int argc, char** argv) {
   if (argc < 3 || argc > 4) {
-    std::cerr << "usage: write_shape t|mushroom|arch|quadruped|long_neck|upright OUT [LEVELS]\n";
+    std::cerr << "usage: write_shape t|mushroom|arch|window_box|quadruped|long_neck|upright OUT [LEVELS]\n";
     return 1;
   }
   const std::string name = argv[1];
@@ -28,9 +29,10 @@ int main(int argc, char** argv) {
     if (name == "t") s = slim::test::t_shape();
     else if (name == "mushroom") s = slim::test::mushroom();
     else if (name == "arch") s = slim::test::arch();
+    else if (name == "window_box") s = slim::test::box_with_windows(5.0);
     else if (std::find(creatures.begin(), creatures.end(), name) != creatures.end()) s = slim::test::creature(name);
     else {
-      std::cerr << "write_shape: unknown shape '" << name << "' (t, mushroom, arch, quadruped, long_neck, upright)\n";
+      std::cerr << "write_shape: unknown shape '" << name << "' (t, mushroom, arch, window_box, quadruped, long_neck, upright)\n";
       return 1;
     }
     slim::vcgx::save_surface(argv[2], slim::test::refined(s, levels));

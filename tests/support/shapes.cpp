@@ -123,14 +123,9 @@ Surface icosphere(int levels, double r, const Eigen::Vector3d& c) {
   return from_lists(v, f);
 }
 
-Surface open_hemisphere(int levels, double r, bool lower) {
-  const Surface full = icosphere(levels, r, Eigen::Vector3d(0, 0, r));
-  std::vector<Eigen::Vector3i> kept;
-  for (Eigen::Index i = 0; i < full.F.rows(); ++i) {
-    const double cz = (full.V(full.F(i, 0), 2) + full.V(full.F(i, 1), 2) + full.V(full.F(i, 2), 2)) / 3.0;
-    if ((cz < r) == lower) kept.emplace_back(full.F.row(i).transpose());
-  }
-  // Drop the unreferenced vertices.
+namespace {
+// The faces kept, with the vertices they use renumbered in order of first use.
+Surface compacted(const Surface& full, std::vector<Eigen::Vector3i> kept) {
   std::vector<int> remap(static_cast<size_t>(full.V.rows()), -1);
   std::vector<Eigen::Vector3d> v;
   for (auto& tri : kept)
@@ -143,6 +138,29 @@ Surface open_hemisphere(int levels, double r, bool lower) {
       tri(k) = m;
     }
   return from_lists(v, kept);
+}
+}  // namespace
+
+Surface open_hemisphere(int levels, double r, bool lower) {
+  const Surface full = icosphere(levels, r, Eigen::Vector3d(0, 0, r));
+  std::vector<Eigen::Vector3i> kept;
+  for (Eigen::Index i = 0; i < full.F.rows(); ++i) {
+    const double cz = (full.V(full.F(i, 0), 2) + full.V(full.F(i, 1), 2) + full.V(full.F(i, 2), 2)) / 3.0;
+    if ((cz < r) == lower) kept.emplace_back(full.F.row(i).transpose());
+  }
+  return compacted(full, kept);
+}
+
+Surface box_with_windows(double width, int windows) {
+  const Surface full = refined(box({-10, -10, 0}, {10, 10, 20}), 4);
+  std::vector<Eigen::Vector3i> kept;
+  for (Eigen::Index i = 0; i < full.F.rows(); ++i) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) c += full.V.row(full.F(i, k)).transpose() / 3.0;
+    const bool side = std::abs(c.y() + 10) < 1e-9 || (windows == 2 && std::abs(c.y() - 10) < 1e-9);
+    if (!(side && c.x() > 0 && c.x() < width && c.z() > 6.25 && c.z() < 13.75)) kept.emplace_back(full.F.row(i).transpose());
+  }
+  return compacted(full, kept);
 }
 
 Surface two_cubes_sharing_edge(double a) {

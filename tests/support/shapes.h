@@ -35,6 +35,11 @@ Surface icosphere(int levels, double r = 10.0, const Eigen::Vector3d& c = Eigen:
 // The lower or upper half of an icosphere: an open surface (not closed).
 Surface open_hemisphere(int levels, double r = 10.0, bool lower = true);
 
+// The box [-10, 10]² × [0, 20] on a 1.25 mm grid of faces, with a window [0, width] × [6.25, 13.75]
+// left open in its side y = -10 (and with windows = 2 also in y = +10): an open surface whose
+// slices through the windows have gaps `width` wide. width: a multiple of 1.25 mm, up to 10.
+Surface box_with_windows(double width, int windows = 1);
+
 // Two unit cubes of side a that share exactly one edge (non-manifold edge, 4 faces on it).
 Surface two_cubes_sharing_edge(double a = 10.0);
 

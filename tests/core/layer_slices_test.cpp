@@ -1,0 +1,191 @@
+// Slices as a slicer cuts them (core/layer_slices.h) and the support raster read from them
+// (core/slice_raster.h): closed meshes slice into closed loops of their exact cross-section and
+// read as the ray raster does; holes are closed across small gaps, wider ones empty the slice and
+// the slice above stands on nothing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "core/face_adjacency.h"
+#include "core/layer_slices.h"
+#include "core/parallel_for.h"
+#include "core/slice_raster.h"
+#include "core/support_raster.h"
+#include "core/support_sweep.h"
+#include "support/shapes.h"
+
+namespace slim {
+namespace {
+
+using Eigen::Vector3d;
+
+double signed_area(const Polyline2& p) {
+  double a = 0.0;
+  for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) a += p[j].x() * p[i].y() - p[i].x() * p[j].y();
+  return 0.5 * a;
+}
+
+double loops_area(const LayerSlice& s) {
+  double a = 0.0;
+  for (const Polyline2& p : s.loops) a += signed_area(p);
+  return a;
+}
+
+std::vector<LayerSlice> slice(const Surface& s, const std::vector<double>& heights, double gap = 2.0) {
+  return slice_layers(s, FaceAdjacency(s), heights, gap);
+}
+
+TEST(LayerSlices, AClosedMeshSlicesIntoClosedLoopsOfItsCrossSection) {
+  // A 20 x 14 box turned about +Z, with a 6 x 4 cavity (inside-out box) inside it, and beside it a
+  // second box: material on the loops' left, so the cavity's loop runs clockwise.
+  const Eigen::Matrix3d turn = test::axis_angle(Vector3d::UnitZ(), 0.37);
+  const Surface outer = test::transformed(test::box({0, 0, 0}, {20, 14, 10}), turn, {1.3, -0.7, 0});
+  const Surface cavity = test::transformed(flipped(test::box({5, 5, 3}, {11, 9, 7})), turn, {1.3, -0.7, 0});
+  const Surface s = test::merge(test::merge(outer, cavity), test::box({30, 0, 0}, {33, 2, 5}));
+  const std::vector<double> heights = {8.5, 1.0, 5.0, 9.99, 12.0};
+  std::vector<LayerSlice> slices;
+  {
+    const ThreadScope one(1);
+    slices = slice(s, heights);
+  }
+  const std::vector<LayerSlice> on_two = [&] {
+    const ThreadScope two(2);
+    return slice(s, heights);
+  }();
+  const std::vector<size_t> loops = {1, 2, 3, 1, 0};
+  const std::vector<double> area = {280, 286, 280 - 24 + 6, 280, 0};
+  for (size_t h = 0; h < heights.size(); ++h) {
+    SCOPED_TRACE(heights[h]);
+    EXPECT_TRUE(slices[h].dropped.empty());
+    EXPECT_EQ(slices[h].loops.size(), loops[h]);
+    EXPECT_NEAR(loops_area(slices[h]), area[h], 1e-9);
+    int clockwise = 0;
+    for (const Polyline2& p : slices[h].loops) clockwise += signed_area(p) < 0;
+    EXPECT_EQ(clockwise, heights[h] > 3 && heights[h] < 7 ? 1 : 0);
+    ASSERT_EQ(on_two[h].loops.size(), slices[h].loops.size());
+    for (size_t i = 0; i < slices[h].loops.size(); ++i) EXPECT_EQ(on_two[h].loops[i], slices[h].loops[i]);
+  }
+}
+
+TEST(LayerSlices, AHoleWiderThanTheGapEmptiesTheSlicesThroughIt) {
+  const Surface s = test::box_with_windows(5.0);  // a 5 mm window over z in [6.25, 13.75]
+  const std::vector<LayerSlice> slices = slice(s, {3.0, 10.0, 17.0});
+  for (size_t h : {0, 2}) {
+    EXPECT_EQ(slices[h].loops.size(), 1u);
+    EXPECT_TRUE(slices[h].dropped.empty());
+    EXPECT_NEAR(loops_area(slices[h]), 400.0, 1e-9);
+  }
+  EXPECT_TRUE(slices[1].loops.empty());
+  ASSERT_EQ(slices[1].dropped.size(), 1u);
+  // The lost chain runs from one side of the window to the other, material on its left: closed
+  // by a straight line across the window it is the whole section.
+  EXPECT_NEAR((slices[1].dropped[0].front() - slices[1].dropped[0].back()).norm(), 5.0, 1e-9);
+  EXPECT_NEAR(signed_area(slices[1].dropped[0]), 400.0, 1e-9);
+  // A slicer that closes gaps up to 6 mm closes this one.
+  const std::vector<LayerSlice> wide = slice(s, {10.0}, 6.0);
+  EXPECT_EQ(wide[0].loops.size(), 1u);
+  EXPECT_TRUE(wide[0].dropped.empty());
+  EXPECT_NEAR(loops_area(wide[0]), 400.0, 1e-9);
+}
+
+TEST(LayerSlices, OpenChainsAreJoinedAcrossGapsUnderTheLimit) {
+  // Windows 1.25 mm wide in two opposite sides: through them the section falls into two chains,
+  // each end 1.25 mm from the other chain's start.
+  const Surface s = test::box_with_windows(1.25, 2);
+  const std::vector<LayerSlice> joined = slice(s, {10.0});
+  EXPECT_TRUE(joined[0].dropped.empty());
+  ASSERT_EQ(joined[0].loops.size(), 1u);
+  EXPECT_NEAR(loops_area(joined[0]), 400.0, 1e-9);
+  const std::vector<LayerSlice> apart = slice(s, {10.0}, 1.0);
+  EXPECT_TRUE(apart[0].loops.empty());
+  EXPECT_EQ(apart[0].dropped.size(), 2u);
+}
+
+TEST(LayerSlices, RejectsBadInput) {
+  const Surface s = test::box({0, 0, 0}, {1, 1, 1});
+  EXPECT_THROW(slice(s, {0.5}, -1.0), std::invalid_argument);
+  EXPECT_THROW(slice(s, {NAN}), std::invalid_argument);
+  EXPECT_TRUE(slice(s, {}).empty());
+}
+
+// The layers each pixel's spans make solid, as the sweep reads them.
+std::vector<std::set<int>> solid_layers(const SupportRaster& r, const SlicerLayers& L) {
+  std::vector<std::set<int>> out(static_cast<size_t>(r.grid.count()));
+  for (int p = 0; p < r.grid.count(); ++p)
+    for (int s = r.span_begin[p]; s < r.span_begin[p + 1]; ++s)
+      for (int k = L.first_slice_at_or_above(r.spans[s].bottom); k <= L.last_slice_at_or_below(r.spans[s].top) && k < L.count; ++k)
+        out[p].insert(k);
+  return out;
+}
+
+PixelGrid grid_over(const Surface& s, double pixel) {
+  const Vector3d lo = s.V.colwise().minCoeff(), hi = s.V.colwise().maxCoeff();
+  PixelGrid g;
+  g.pixel = pixel;
+  g.x0 = lo.x() - 3.0173;
+  g.y0 = lo.y() - 3.0291;
+  g.nx = static_cast<int>((hi.x() - g.x0 + 3.0) / pixel) + 1;
+  g.ny = static_cast<int>((hi.y() - g.y0 + 3.0) / pixel) + 1;
+  return g;
+}
+
+SlicerLayers layers_of(const Surface& s) {
+  SlicerLayers L;
+  L.count = static_cast<int>(std::ceil((s.V.col(2).maxCoeff() - L.first_height) / L.height)) + 2;
+  return L;
+}
+
+TEST(SliceRaster, AClosedMeshReadsAsTheRayRaster) {
+  // Overlapping closed parts (a ball through a T) and the sample bunny at 60 mm: slice by slice,
+  // every pixel is solid in the same layers as along its ray, and the sweep gives the same bits.
+  Surface bunny = test::sample_bunny();
+  bunny.V *= 60.0 / (bunny.V.colwise().maxCoeff() - bunny.V.colwise().minCoeff()).maxCoeff();
+  bunny.V.col(2).array() -= bunny.V.col(2).minCoeff();
+  for (const Surface& s : {test::merge(test::icosphere(2, 7.0, {0.31, -0.17, 9.0}), test::t_shape()), bunny}) {
+    const FaceAdjacency adj(s);
+    const PixelGrid g = grid_over(s, 0.714);
+    OverhangRule rays, slices;
+    slices.slices = true;
+    const SupportRaster a = build_support_raster(s, adj, g, rays), b = build_support_raster(s, adj, g, slices);
+    const SlicerLayers L = layers_of(s);
+    EXPECT_EQ(solid_layers(a, L), solid_layers(b, L));
+    ASSERT_EQ(a.overhangs.size(), b.overhangs.size());  // no contour lost: no overhang added
+    const GridSweepSettings settings;
+    for (int phase : {0, 3}) EXPECT_EQ(GridSupportSweep(a, L, settings).run(phase, 3 - phase).total(),
+                                       GridSupportSweep(b, L, settings).run(phase, 3 - phase).total());
+  }
+}
+
+TEST(SliceRaster, TheSliceAboveALostContourStandsOnNothing) {
+  const Surface open = test::box_with_windows(5.0), closed = test::refined(test::box({-10, -10, 0}, {10, 10, 20}), 4);
+  const PixelGrid g = grid_over(closed, 0.714);
+  OverhangRule rule;
+  rule.slices = true;
+  const SupportRaster r = build_support_raster(open, FaceAdjacency(open), g, rule);
+  const SlicerLayers L = layers_of(closed);
+  const std::vector<std::set<int>> solid = solid_layers(r, L);
+  const int below = L.last_slice_at_or_below(6.25), first_lost = below + 1, above = L.first_slice_at_or_above(13.75);
+  int inside = 0, stands_on_nothing = 0;
+  for (int p = 0; p < g.count(); ++p) {
+    const double x = g.x0 + (p % g.nx + 0.5) * g.pixel, y = g.y0 + (p / g.nx + 0.5) * g.pixel;
+    if (std::abs(x) >= 10 || std::abs(y) >= 10) {
+      EXPECT_TRUE(solid[p].empty()) << p;
+      continue;
+    }
+    ++inside;
+    // Solid up to the window, empty through it, solid again above it.
+    for (int k = 0; k < L.count; ++k) EXPECT_EQ(solid[p].count(k), (k <= below || k >= above) && L.slice_z(k) < 20 ? 1u : 0u) << k;
+    EXPECT_GT(above, first_lost);
+    for (const PixelOverhang& o : r.overhangs)
+      if (o.pixel == p && o.layer_low == above && o.dense) ++stands_on_nothing;
+  }
+  EXPECT_EQ(stands_on_nothing, inside);
+  // Its faces overhang as the closed box's do (its bottom, on the plate): the rest came from the
+  // lost slices.
+  const SupportRaster shut = build_support_raster(closed, FaceAdjacency(closed), g, rule);
+  EXPECT_EQ(r.overhangs.size(), shut.overhangs.size() + static_cast<size_t>(inside));
+}
+
+}  // namespace
+}  // namespace slim
