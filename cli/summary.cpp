@@ -15,6 +15,20 @@ namespace slim::cli {
 
 namespace {
 
+// Text folded into lines of at most 100 characters, each after the first indented by `indent`.
+std::string wrapped(const std::string& text, size_t indent) {
+  std::istringstream words(text);
+  std::string out, line, word;
+  while (words >> word) {
+    if (!line.empty() && indent + line.size() + 1 + word.size() > 100) {
+      out += line + "\n" + std::string(indent, ' ');
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  return out + line;
+}
+
 // What was read and how it is written back: the file's own lists (indexed formats), or the
 // vertices STL's separate corners were welded into.
 void print_mesh_line(const vcgx::MeshFile& file, const WeldedView& view) {
@@ -124,6 +138,7 @@ void print_summary(const RunReport& run) {
   if (r.inside_out)
     std::printf("  note            the input is inside out (every normal points inwards): it was computed turned\n"
                 "                  over, and %s keeps the input's face orientation\n", run.out.c_str());
+  if (run.figures.open_edges > 0) std::printf("  note            %s\n", wrapped(open_mesh_note(run.figures.open_edges), 18).c_str());
   print_shape_cost(run.figures, orient);
 }
 

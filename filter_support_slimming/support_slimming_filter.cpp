@@ -93,6 +93,7 @@ void log_slimming(FilterRun& run, const slim::SlimmingResult& r, const slim::Sli
                                                      .toUtf8().constData()
                                                : "none"));
   if (r.inside_out) run.warning(QString("Support Slimming: ") + kInsideOutNotice);
+  if (f.open_edges > 0) run.warning(QString("Support Slimming: ") + slim::open_mesh_note(f.open_edges).c_str());
   for (const auto& [key, value] : slim::named_figures(f)) run.outputs[key] = value;
   run.outputs["risky_area_before"] = r.before.risky_area;
   run.outputs["risky_area_after"] = r.after.risky_area;

@@ -224,11 +224,15 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
   // the result.
   const EdgeTopology edges = edge_topology(input);
   require_consistent_orientation(edges);
-  if (!inside_out(input, edges)) return slim_oriented(checked, o);
-  const Surface turned = flipped(input);
-  SlimmingResult r = slim_oriented(checked.derived(turned), o);
-  r.surface.F = input.F;  // the topology never changes, orientation included
-  r.inside_out = true;
+  SlimmingResult r;
+  if (!inside_out(input, edges)) {
+    r = slim_oriented(checked, o);
+  } else {
+    r = slim_oriented(checked.derived(flipped(input)), o);
+    r.surface.F = input.F;  // the topology never changes, orientation included
+    r.inside_out = true;
+  }
+  r.open_edges = static_cast<long>(edges.open_edges);
   return r;
 }
 

@@ -217,6 +217,8 @@ struct SlimmingResult {
   // The input was inside out (closed, negative volume): it was computed with its faces turned
   // over, so `before`, `after` and the volumes describe the part; `surface.F` is still the input's.
   bool inside_out = false;
+  long open_edges = 0;                // edges of the input used by one face: the borders of holes,
+                                      // which slicers close or drop slice by slice (as the model does)
   Eigen::VectorXd displacement;       // #V, mm
   double volume_before = 0.0, volume_after = 0.0;  // signed enclosed volume, mm³
   double deviation_budget_mm = 0.0;   // the budget the run held to (0: none)

@@ -32,9 +32,19 @@ SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& r,
   }
   f.budget_mm = r.deviation_budget_mm;
   f.budget_pct = percent(f.budget_mm, reference_diagonal);
+  f.open_edges = r.open_edges;
   f.iterations = r.iterations;
   f.seconds = r.seconds;
   return f;
+}
+
+std::string open_mesh_note(long open_edges) {
+  if (open_edges <= 0) return "";
+  return "the mesh is open (" + std::to_string(open_edges) +
+         " edges border holes): a slicer closes small gaps in each slice and drops what it cannot close "
+         "(PrusaSlicer: gaps over 2 mm), so a wider hole empties the slices through it and the part above "
+         "them is supported as if it floated; the support estimate counts that. Closing the holes first "
+         "(MeshLab: Filters > Remeshing, Simplification and Reconstruction > Close Holes) avoids it";
 }
 
 std::vector<std::pair<const char*, double>> named_figures(const SlimmingFigures& f) {
@@ -56,6 +66,7 @@ std::vector<std::pair<const char*, double>> named_figures(const SlimmingFigures&
           {"mean_displacement_mm", f.mean_displacement_mm},
           {"budget_mm", f.budget_mm},
           {"budget_pct", f.budget_pct},
+          {"open_edges", static_cast<double>(f.open_edges)},
           {"iterations", static_cast<double>(f.iterations)},
           {"seconds", f.seconds}};
 }

@@ -34,11 +34,16 @@ struct SlimmingFigures {
   double hausdorff_mm = 0.0, hausdorff_pct = 0.0;
   double max_displacement_mm = 0.0, mean_displacement_mm = 0.0;
   double budget_mm = 0.0, budget_pct = 0.0;  // 0: no budget
+  long open_edges = 0;  // edges of the input used by one face: the borders of its holes
   int iterations = 0;
   double seconds = 0.0;
 };
 
 SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& result, double reference_diagonal);
+
+// What a user should know of an open mesh (open_edges > 0): slicers close or drop its holes slice
+// by slice, which the support estimate counts. One sentence; empty for a closed mesh.
+std::string open_mesh_note(long open_edges);
 
 // Every figure by name, in the order above: the keys of support-slim's --report and of the
 // Support Slimming filter's outputs (docs/usage.md lists them with their units).

@@ -74,6 +74,29 @@ TEST(CliReport, FiguresAreThoseOfTheFilesWritten) {
   // The summary says the same.
   for (const char* line : {"  support         ", "  shape           Hausdorff ", "  budget          "})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  EXPECT_EQ(f.at("open_edges"), 0.0);  // the bunny is closed: no note on holes
+  EXPECT_EQ(r.out.find("the mesh is open"), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}
+
+// An open mesh: the report counts the edges that border its holes, the summary says what slicers
+// do with them, and the support estimate counts the slices a slicer loses (a box with a 5 mm window
+// in its side: PrusaSlicer empties the slices through it and supports the box above them).
+TEST(CliReport, AnOpenMeshIsNamedAndItsLostSlicesCounted) {
+  const fs::path dir = test::scratch();
+  const fs::path in = dir / "window_box.ply", out = dir / "slim.ply", report = dir / "slim.json";
+  const Surface box = test::box_with_windows(5.0);
+  vcgx::save_surface(in.string(), box);
+  const test::CliRun r = test::run_cli("'" + in.string() + "' -o '" + out.string() + "' --report '" + report.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string text;
+  const std::map<std::string, double> f = read_numbers(report, text);
+  EXPECT_EQ(f.at("open_edges"), static_cast<double>(edge_topology(box).open_edges));
+  EXPECT_GT(f.at("open_edges"), 0.0);
+  EXPECT_NE(r.out.find("the mesh is open (" + std::to_string(edge_topology(box).open_edges) + " edges border holes)"),
+            std::string::npos) << r.out;
+  EXPECT_NEAR(f.at("support_estimate_before_mm3"), estimate_support(box).volume_mm3, 1e-6 * f.at("support_estimate_before_mm3"));
+  EXPECT_GT(f.at("support_estimate_before_mm3"), 1000.0);
   fs::remove_all(dir);
 }
 

@@ -119,6 +119,22 @@ TEST(Plugin, SupportSlimmingAddsASlimmedLayerAndLeavesTheInputAlone) {
 
   ASSERT_EQ(md.meshList.size(), 2);
   test::expect_slimmed_layer(*input, *md.mm(), original, params.getAbsPerc("plateTolerance"), h.logLines());
+  EXPECT_FALSE(h.logLines().join("\n").contains("the mesh is open")) << h.logLines().join("\n").toStdString();
+}
+
+// An open mesh (a box with a 5 mm window in its side) is slimmed like any other, and the log says
+// what slicers do with its hole, which the support estimate counts.
+TEST(Plugin, SupportSlimmingSaysWhatSlicersDoWithAnOpenMesh) {
+  PluginHarness h;
+  ASSERT_TRUE(h.ok()) << h.error().toStdString();
+  MeshDocument md;
+  const Surface box = test::box_with_windows(5.0);
+  test::add_layer(md, box, "window box");
+  ASSERT_TRUE(h.apply(kSlimming, md, h.defaults(kSlimming, md))) << h.lastError().toStdString();
+  ASSERT_EQ(md.meshList.size(), 2);
+  const QString log = h.logLines().join("\n");
+  const std::string note = "the mesh is open (" + std::to_string(edge_topology(box).open_edges) + " edges border holes)";
+  EXPECT_TRUE(log.contains(QString::fromStdString(note))) << log.toStdString();
 }
 
 TEST(Plugin, SupportSlimmingPaperMethodRuns) {
