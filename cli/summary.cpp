@@ -70,9 +70,13 @@ void print_orientation(const OrientationResult& orientation, const SlimmingResul
 // The support the slicer builds, as the core's support model estimates it (what the run chose by).
 void print_support(const SlimmingFigures& f, bool oriented) {
   if (!(f.support_estimate_before_mm3 > 0.0)) return;
-  std::printf("  support         %.6g -> %.6g mm^3 (%+.1f%%; the support model's estimate of a slicer's support%s)\n",
+  std::printf("  support         %.6g -> %.6g mm^3 (%+.1f%%; the support model's estimate of a slicer's support%s,\n"
+              "                  the mean over its grid phases, which the run minimises)\n",
               f.support_estimate_before_mm3, f.support_estimate_after_mm3, f.support_change_pct,
               oriented ? ", in the print pose" : "");
+  if (f.support_slicer_phase_before_mm3 > 0.0)
+    std::printf("                  at PrusaSlicer's own grid phase: %.6g -> %.6g mm^3 (%+.1f%%; its prediction for these files)\n",
+                f.support_slicer_phase_before_mm3, f.support_slicer_phase_after_mm3, f.support_slicer_phase_change_pct);
 }
 
 // What the shape paid, next to what the budget allowed.

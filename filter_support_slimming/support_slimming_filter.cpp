@@ -71,6 +71,11 @@ void log_slimming(FilterRun& run, const slim::SlimmingResult& r, const slim::Sli
     run.info(QString::asprintf("Support Slimming: support %.6g -> %.6g mm^3 (%+.1f%%; the support model's estimate of a "
                                "slicer's support%s)", f.support_estimate_before_mm3, f.support_estimate_after_mm3,
                                f.support_change_pct, orient ? ", in the print pose" : ""));
+  if (f.support_slicer_phase_before_mm3 > 0.0)
+    run.info(QString::asprintf("Support Slimming: at PrusaSlicer's own grid phase the model predicts %.6g -> %.6g mm^3 (%+.1f%%; "
+                               "the figure above is the mean over grid phases, which the run minimises)",
+                               f.support_slicer_phase_before_mm3, f.support_slicer_phase_after_mm3,
+                               f.support_slicer_phase_change_pct));
   run.info(QString::asprintf(
       "Support Slimming: risky area %.6g -> %.6g mm^2 (%.2f%% -> %.2f%% of the surface, %.1f%% less)",
       r.before.risky_area, r.after.risky_area, 100.0 * r.before.risky_share(), 100.0 * r.after.risky_share(),

@@ -93,12 +93,15 @@ std::string embed_and_write_back(const Surface& input, const EmbeddedDomain& dom
 // The support model's estimate for positions of the input's mesh (mm³); 0 when the run does not
 // measure it (no model), and `unmeasurable` when the model refuses the surface (a part with no
 // height, say): the input is then judged by the shadow volume alone, an iterate never chosen.
-double support_estimate(const SupportModel* model, const Points& V, const SlimmingOptions& o, double unmeasurable) {
+// At the slicer's own phase (slicer_phase): one grid phase, two turns (support_model.h).
+double support_estimate(const SupportModel* model, const Points& V, const SlimmingOptions& o, double unmeasurable,
+                        bool slicer_phase = false) {
   if (!model) return 0.0;
   SupportModelOptions m;
   m.print_direction = o.print_direction;
   m.alpha_max_deg = o.alpha_max_deg;
   m.threads = o.threads;
+  if (slicer_phase) m.grid_phases = 1, m.turns = 2;
   try {
     return model->estimate(V, m).volume_mm3;
   } catch (const std::invalid_argument&) {
@@ -198,6 +201,12 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
   SupportSlimmer slimmer(checked, std::move(domain), r.before, o, report);
   r.solver_backend = slimmer.backend_name();
   std::string why = iterate(slimmer, input, judge, o, report, r);
+  if (r.support_before_mm3 > 0.0) {
+    const auto started = std::chrono::steady_clock::now();
+    r.support_slicer_phase_before_mm3 = support_estimate(judge, input.V, o, 0.0, true);
+    r.support_slicer_phase_after_mm3 = support_estimate(judge, r.surface.V, o, 0.0, true);
+    r.stage_seconds.support_model += seconds_since(started);
+  }
   // The result is the best iterate; its statistics close the history.
   r.history.resize(static_cast<size_t>(r.iterations) + 1);
   r.volume_after = signed_volume(r.surface);

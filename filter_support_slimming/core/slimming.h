@@ -208,8 +208,14 @@ struct SlimmingStageSeconds {  // wall time per stage, summed over iterations
 struct SlimmingResult {
   Surface surface;                    // the deformed mesh, same topology as the input
   OverhangReport before, after;       // measured at alpha_max
-  // The support model's estimate for the input and the result (mm³; 0 when not measured).
+  // The support model's estimate for the input and the result (mm³; 0 when not measured): the
+  // mean over the slicer's grid phases, which the run minimises (it must not win by moving the
+  // part against the grid).
   double support_before_mm3 = 0.0, support_after_mm3 = 0.0;
+  // The same at the slicer's own grid phase (PrusaSlicer centres its grid on the part's bounding
+  // box), lines along x and along y averaged: the model's prediction of what the slicer builds for
+  // these very parts, as the judge slices them (mm³; 0 when not measured).
+  double support_slicer_phase_before_mm3 = 0.0, support_slicer_phase_after_mm3 = 0.0;
   std::vector<IterationStats> history;  // history[0] is the input, one entry per kept iteration
   int iterations = 0;                 // the iteration the result comes from (0: the input)
   int iterations_run = 0;             // iterations computed, including any after the best one

@@ -14,6 +14,10 @@ SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& r,
   f.support_estimate_before_mm3 = r.support_before_mm3;
   f.support_estimate_after_mm3 = r.support_after_mm3;
   if (r.support_before_mm3 > 0.0) f.support_change_pct = 100.0 * (r.support_after_mm3 / r.support_before_mm3 - 1.0);
+  f.support_slicer_phase_before_mm3 = r.support_slicer_phase_before_mm3;
+  f.support_slicer_phase_after_mm3 = r.support_slicer_phase_after_mm3;
+  if (r.support_slicer_phase_before_mm3 > 0.0)
+    f.support_slicer_phase_change_pct = 100.0 * (r.support_slicer_phase_after_mm3 / r.support_slicer_phase_before_mm3 - 1.0);
   f.shadow_volume_before_mm3 = r.before.shadow_volume;
   f.shadow_volume_after_mm3 = r.after.shadow_volume;
   f.risky_area_before_mm2 = r.before.risky_area;
@@ -51,6 +55,9 @@ std::vector<std::pair<const char*, double>> named_figures(const SlimmingFigures&
   return {{"support_estimate_before_mm3", f.support_estimate_before_mm3},
           {"support_estimate_after_mm3", f.support_estimate_after_mm3},
           {"support_change_pct", f.support_change_pct},
+          {"support_slicer_phase_before_mm3", f.support_slicer_phase_before_mm3},
+          {"support_slicer_phase_after_mm3", f.support_slicer_phase_after_mm3},
+          {"support_slicer_phase_change_pct", f.support_slicer_phase_change_pct},
           {"shadow_volume_before_mm3", f.shadow_volume_before_mm3},
           {"shadow_volume_after_mm3", f.shadow_volume_after_mm3},
           {"risky_area_before_mm2", f.risky_area_before_mm2},

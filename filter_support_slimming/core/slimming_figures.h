@@ -27,6 +27,8 @@ namespace slim {
 struct SlimmingFigures {
   double support_estimate_before_mm3 = 0.0, support_estimate_after_mm3 = 0.0;
   double support_change_pct = 0.0;  // of the estimate; 0 when not measured
+  double support_slicer_phase_before_mm3 = 0.0, support_slicer_phase_after_mm3 = 0.0;  // at the slicer's
+  double support_slicer_phase_change_pct = 0.0;  // own grid phase (slimming.h); 0 when not measured
   double shadow_volume_before_mm3 = 0.0, shadow_volume_after_mm3 = 0.0;
   double risky_area_before_mm2 = 0.0, risky_area_after_mm2 = 0.0;
   double volume_before_mm3 = 0.0, volume_after_mm3 = 0.0, volume_change_pct = 0.0;

@@ -46,7 +46,8 @@ TEST(CliReport, FiguresAreThoseOfTheFilesWritten) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::string text;
   const std::map<std::string, double> f = read_numbers(report, text);
-  for (const char* key : {"support_estimate_before_mm3", "support_estimate_after_mm3", "volume_change_pct",
+  for (const char* key : {"support_estimate_before_mm3", "support_estimate_after_mm3", "support_slicer_phase_before_mm3",
+                          "support_slicer_phase_after_mm3", "support_slicer_phase_change_pct", "volume_change_pct",
                           "crease_share_pct", "crease_p99_deg", "hausdorff_pct", "hausdorff_mm", "max_displacement_mm",
                           "budget_mm", "budget_pct", "risky_area_before_mm2", "risky_area_after_mm2", "iterations"})
     EXPECT_EQ(f.count(key), 1u) << key << "\n" << text;
@@ -58,6 +59,15 @@ TEST(CliReport, FiguresAreThoseOfTheFilesWritten) {
   EXPECT_NEAR(f.at("support_estimate_before_mm3"), estimate_support(in).volume_mm3, 1e-9 * f.at("support_estimate_before_mm3"));
   EXPECT_NEAR(f.at("support_estimate_after_mm3"), estimate_support(slimmed).volume_mm3, 1e-3 * f.at("support_estimate_after_mm3"));
   EXPECT_LT(f.at("support_estimate_after_mm3"), f.at("support_estimate_before_mm3"));
+  // And at the slicer's own grid phase (one phase, lines along x and y): the prediction for these files.
+  SupportModelOptions at_phase;
+  at_phase.grid_phases = 1;
+  at_phase.turns = 2;
+  EXPECT_NEAR(f.at("support_slicer_phase_before_mm3"), estimate_support(in, at_phase).volume_mm3, 1e-9 * f.at("support_estimate_before_mm3"));
+  EXPECT_NEAR(f.at("support_slicer_phase_after_mm3"), estimate_support(slimmed, at_phase).volume_mm3,
+              1e-3 * f.at("support_estimate_after_mm3"));
+  EXPECT_NEAR(f.at("support_slicer_phase_change_pct"),
+              100 * (f.at("support_slicer_phase_after_mm3") / f.at("support_slicer_phase_before_mm3") - 1), 1e-6);
   // The shape's cost.
   const ShapeChange shape = shape_change(in, slimmed);
   EXPECT_NEAR(f.at("volume_change_pct"), shape.volume_change_pct, 1e-3);
