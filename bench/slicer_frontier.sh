@@ -15,7 +15,9 @@
 #   model         the support model's predicted change, %: the CLI's own figures (support-slim
 #                 --report), or for a run that does not measure them (--method paper) the
 #                 model's estimates of both files (bench/support_model_tool); the column is left
-#                 out, never filled with a placeholder, when neither is there.
+#                 out, never filled with a placeholder, when neither is there. Twice: the mean
+#                 over grid phases (what the run minimises) and at the slicer's own phase (lines
+#                 along x and y averaged: the prediction for these files).
 # Writes OUT/frontier.tsv (every figure, one row per run), OUT/frontier.md (the table) and, with
 # gnuplot, a plot of support cut against Hausdorff distance per model (--plot, default
 # OUT/frontier.png). Every run is cached in OUT/<model>/<method>_<budget>/: a second call only
@@ -92,7 +94,16 @@ run_one() {  # NAME METHOD BUDGET
     before="$(kv "$in_dir/model.txt" volume_mm3)"; after="$(kv "$dir/model.txt" volume_mm3)"
   fi
   [ -z "$before" ] || [ -z "$after" ] || model="$(pct "$before" "$after")"
-  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$method" "$budget" \
+  # The same at the slicer's own grid phase (support-slim --report), or the model's tool on both files.
+  local phase="" pb pa
+  pb="$(json_number "$dir/report.json" support_slicer_phase_before_mm3)"; pa="$(json_number "$dir/report.json" support_slicer_phase_after_mm3)"
+  if { [ -z "$pb" ] || awk -v b="$pb" 'BEGIN { exit !(b == 0) }'; } && [ -x "$model_tool" ]; then
+    [ -s "$in_dir/model_phase.txt" ] || "$model_tool" estimate "$in_dir/input.ply" --angle 45 --phases 1 --turns 2 >"$in_dir/model_phase.txt"
+    "$model_tool" estimate "$dir/result.ply" --angle 45 --phases 1 --turns 2 >"$dir/model_phase.txt"
+    pb="$(kv "$in_dir/model_phase.txt" volume_mm3)"; pa="$(kv "$dir/model_phase.txt" volume_mm3)"
+  fi
+  [ -z "$pb" ] || [ -z "$pa" ] || phase="$(pct "$pb" "$pa")"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$method" "$budget" \
     "$(pct "$(kv "$in_dir/prusa.txt" support_mm3)" "$(kv "$dir/prusa.txt" support_mm3)")" \
     "$(pct "$(kv "$in_dir/cura.txt" support_mm3)" "$(kv "$dir/cura.txt" support_mm3)")" \
     "$(awk -v h="$(kv "$dir/hausdorff.txt" hausdorff_mm)" -v d="$diag" 'BEGIN { printf "%.2f", 100 * h / d }')" \
@@ -100,7 +111,7 @@ run_one() {  # NAME METHOD BUDGET
     "$(awk -v v="$(kv "$dir/measure.txt" crease_share_pct)" 'BEGIN { printf "%.1f", v }')" \
     "$(awk -v v="$(kv "$dir/measure.txt" crease_p99_deg)" 'BEGIN { printf "%.1f", v }')" \
     "${model:-}" "$(kv "$in_dir/prusa.txt" support_mm3)" "$(kv "$dir/prusa.txt" support_mm3)" "$slim_s" \
-    "$((SECONDS - started))" >"$dir/row.tsv"
+    "$((SECONDS - started))" "${phase:-}" >"$dir/row.tsv"
 }
 
 prepare_input() {  # NAME
@@ -135,7 +146,7 @@ done
 
 # ---- the table ----------------------------------------------------------------------------------
 tsv="$out/frontier.tsv"
-printf 'model\tkind\tmethod\tbudget_pct\tprusa_change_pct\tcura_change_pct\thausdorff_pct\tvolume_change_pct\tcrease_share_pct\tcrease_p99_deg\tmodel_change_pct\tprusa_before_mm3\tprusa_after_mm3\tslim_s\trun_s\n' >"$tsv"
+printf 'model\tkind\tmethod\tbudget_pct\tprusa_change_pct\tcura_change_pct\thausdorff_pct\tvolume_change_pct\tcrease_share_pct\tcrease_p99_deg\tmodel_change_pct\tprusa_before_mm3\tprusa_after_mm3\tslim_s\trun_s\tmodel_slicer_phase_change_pct\n' >"$tsv"
 missing=0
 for name in "${names[@]}"; do
   kind="$(awk -F'\t' -v n="$name" '$1 == n { print $2 }' "$corpus/manifest.tsv")"
@@ -149,11 +160,11 @@ done
 [ "$missing" -eq 0 ] || echo "[frontier] $missing runs not made yet (left out of the table)" >&2
 with_model="$(awk -F'\t' 'NR > 1 && $11 != "" { print "yes"; exit }' "$tsv")"
 {
-  echo "| model | kind | method | budget | PrusaSlicer | Cura | Hausdorff (% diag) | volume | crease share (p99) |$( [ -z "$with_model" ] || echo " support model |")"
-  echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |$( [ -z "$with_model" ] || echo " ---: |")"
+  echo "| model | kind | method | budget | PrusaSlicer | Cura | Hausdorff (% diag) | volume | crease share (p99) |$( [ -z "$with_model" ] || echo " support model | at the slicer's phase |")"
+  echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |$( [ -z "$with_model" ] || echo " ---: | ---: |")"
   awk -F'\t' -v m="$with_model" 'NR > 1 {
     line = sprintf("| %s | %s | %s | %s%% | %s%% | %s%% | %s | %s%% | %s%% (%s°) |", $1, $2, $3, $4, $5, $6, $7, $8, $9, $10)
-    if (m != "") line = line sprintf(" %s%% |", $11)
+    if (m != "") line = line sprintf(" %s%% | %s |", $11, $16 == "" ? "n/a" : $16 "%")
     print line }' "$tsv"
 } >"$out/frontier.md"
 cat "$out/frontier.md"

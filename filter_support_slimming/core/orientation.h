@@ -66,7 +66,7 @@ enum class OrientationEffort { Fast, Normal, Thorough };
 
 struct OrientationOptions {
   double alpha_max_deg = 45.0;      // self-supporting angle from the vertical, [0, 90)
-  double plate_tolerance = -1.0;    // mm; < 0 means 1e-3 of the part size
+  double plate_tolerance = -1.0;    // mm; < 0 means 1e-3 of the bbox diagonal of the part as given
   double contact_bonus = 0.01;      // bonus height as a share of the part size, >= 0
   int sphere_candidates = 4000;     // Fibonacci directions, >= 1
   int flat_regions = 32;            // largest flat regions tried face down and face up, >= 0

@@ -207,7 +207,10 @@ OrientationGeometry orientation_geometry(const CheckedSurface& checked, const Or
   g.total_area = a.sum();
   if (!(g.total_area > 0.0)) throw std::invalid_argument("every face has zero area: there is no surface to orient");
   g.tau = self_supporting_tau(o.alpha_max_deg);
-  g.tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * g.size;
+  // The default is Support Slimming's (slimming.h): 1e-3 of the bounding-box diagonal of the part as
+  // given, one length for every pose, so that the slimming in the chosen pose sees the plate as
+  // the search did, and a part left as given is slimmed as it is without the search.
+  g.tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm();
   g.bonus_height = o.contact_bonus * g.size;
   bin_faces(s, n, a, g);
   if (with_hull) build_hull(g);

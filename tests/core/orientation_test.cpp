@@ -44,7 +44,8 @@ Reference reference_score(const Surface& s, const Eigen::Vector3d& d, const Orie
   OverhangOptions oo;
   oo.print_direction = d;
   oo.alpha_max_deg = o.alpha_max_deg;
-  oo.plate_tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * part_size(s);
+  // The default tolerance is Support Slimming's: 1e-3 of the bbox diagonal of the part as given.
+  oo.plate_tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * test::bbox_diagonal(s);
   const OverhangReport r = analyse_overhang(s, oo);
   const Eigen::VectorXd area = face_areas(s);
   double contact = 0.0;
