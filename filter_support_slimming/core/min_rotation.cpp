@@ -50,11 +50,13 @@ Eigen::Vector3d tie_direction(const Eigen::Vector3d& d, const Eigen::Vector3d& t
   return Eigen::Vector3d::UnitZ();  // unreachable for a unit d: X and Y cannot both be parallel to it
 }
 
-// The unit normals that constrain anything: zero columns (zero-area faces) dropped, and exact
-// repeats of an earlier column too. A repeat is the same constraint; thousands of them (the
-// pieces of a flat face, a rigid feature on a CAD part) would push the search onto its O(n²)
-// path for nothing (a whole selected T took 9 s). The first of each stays where it was, so the
-// order, and with it every tie, is the same as without the repeats.
+// The unit normals that constrain anything: zero columns (zero-area faces) dropped, and repeats of
+// an earlier kept column too: columns closer than the feasibility tolerance are one constraint (a
+// point feasible for one is feasible for the other within it, since |n·p - n'·p| <= |n - n'|).
+// Thousands of them (the pieces of a flat face, a rigid feature on a CAD part, the faces of a
+// subdivided triangle, whose normals differ in the last bits) would push the search onto its
+// O(n²) path for nothing (a whole selected T took 9 s). The first of each stays where it was, so
+// the order, and with it every tie, is the same as without the repeats.
 Eigen::Matrix3Xd nonzero_unit_columns(const Eigen::Matrix3Xd& normals) {
   Eigen::Matrix3Xd unit(3, normals.cols());
   Eigen::Index count = 0;
@@ -62,12 +64,24 @@ Eigen::Matrix3Xd nonzero_unit_columns(const Eigen::Matrix3Xd& normals) {
     const double length = normals.col(i).norm();
     if (length > 0.0) unit.col(count++) = normals.col(i) / length;
   }
-  std::vector<std::pair<std::array<double, 3>, Eigen::Index>> order(static_cast<size_t>(count));
-  for (Eigen::Index i = 0; i < count; ++i) order[static_cast<size_t>(i)] = {{unit(0, i), unit(1, i), unit(2, i)}, i};
-  std::sort(order.begin(), order.end());
+  // Sorted by x, the columns within the tolerance of one lie in a window around it.
+  constexpr double tol = kMinRotationFeasibilityTolerance;
+  std::vector<Eigen::Index> by_x(static_cast<size_t>(count)), where(static_cast<size_t>(count));
+  for (Eigen::Index i = 0; i < count; ++i) by_x[static_cast<size_t>(i)] = i;
+  std::sort(by_x.begin(), by_x.end(), [&](Eigen::Index a, Eigen::Index b) { return unit(0, a) < unit(0, b) || (unit(0, a) == unit(0, b) && a < b); });
+  for (size_t k = 0; k < by_x.size(); ++k) where[static_cast<size_t>(by_x[k])] = static_cast<Eigen::Index>(k);
   std::vector<bool> repeat(static_cast<size_t>(count), false);
-  for (size_t k = 1; k < order.size(); ++k)
-    if (order[k].first == order[k - 1].first) repeat[static_cast<size_t>(order[k].second)] = true;
+  for (Eigen::Index i = 0; i < count; ++i) {  // in column order: the kept columns before i are final
+    const size_t at = static_cast<size_t>(where[static_cast<size_t>(i)]);
+    auto near_kept = [&](size_t k) {
+      const Eigen::Index j = by_x[k];
+      return j < i && !repeat[static_cast<size_t>(j)] && (unit.col(j) - unit.col(i)).squaredNorm() <= tol * tol;
+    };
+    for (size_t k = at; k-- > 0 && unit(0, by_x[k]) >= unit(0, i) - tol && !repeat[static_cast<size_t>(i)];)
+      repeat[static_cast<size_t>(i)] = near_kept(k);
+    for (size_t k = at + 1; k < by_x.size() && unit(0, by_x[k]) <= unit(0, i) + tol && !repeat[static_cast<size_t>(i)]; ++k)
+      repeat[static_cast<size_t>(i)] = near_kept(k);
+  }
   Eigen::Index kept = 0;
   for (Eigen::Index i = 0; i < count; ++i)
     if (!repeat[static_cast<size_t>(i)]) unit.col(kept++) = unit.col(i);
