@@ -16,8 +16,8 @@
 #                 --report), or for a run that does not measure them (--method paper) the
 #                 model's estimates of both files (bench/support_model_tool); the column is left
 #                 out, never filled with a placeholder, when neither is there. Twice: the mean
-#                 over grid phases (what the run minimises) and at the slicer's own phase (lines
-#                 along x and y averaged: the prediction for these files).
+#                 over grid phases (what the run minimises) and at the slicer's own phase (the
+#                 part as placed: the prediction for these files).
 # Writes OUT/frontier.tsv (every figure, one row per run), OUT/frontier.md (the table) and, with
 # gnuplot, a plot of support cut against Hausdorff distance per model (--plot, default
 # OUT/frontier.png). Every run is cached in OUT/<model>/<method>_<budget>/: a second call only
@@ -98,8 +98,8 @@ run_one() {  # NAME METHOD BUDGET
   local phase="" pb pa
   pb="$(json_number "$dir/report.json" support_slicer_phase_before_mm3)"; pa="$(json_number "$dir/report.json" support_slicer_phase_after_mm3)"
   if { [ -z "$pb" ] || awk -v b="$pb" 'BEGIN { exit !(b == 0) }'; } && [ -x "$model_tool" ]; then
-    [ -s "$in_dir/model_phase.txt" ] || "$model_tool" estimate "$in_dir/input.ply" --angle 45 --phases 1 --turns 2 >"$in_dir/model_phase.txt"
-    "$model_tool" estimate "$dir/result.ply" --angle 45 --phases 1 --turns 2 >"$dir/model_phase.txt"
+    [ -s "$in_dir/model_phase.txt" ] || "$model_tool" estimate "$in_dir/input.ply" --angle 45 --phases 1 --turns 1 >"$in_dir/model_phase.txt"
+    "$model_tool" estimate "$dir/result.ply" --angle 45 --phases 1 --turns 1 >"$dir/model_phase.txt"
     pb="$(kv "$in_dir/model_phase.txt" volume_mm3)"; pa="$(kv "$dir/model_phase.txt" volume_mm3)"
   fi
   [ -z "$pb" ] || [ -z "$pa" ] || phase="$(pct "$pb" "$pa")"

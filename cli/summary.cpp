@@ -75,7 +75,7 @@ void print_support(const SlimmingFigures& f, bool oriented) {
               f.support_estimate_before_mm3, f.support_estimate_after_mm3, f.support_change_pct,
               oriented ? ", in the print pose" : "");
   if (f.support_slicer_phase_before_mm3 > 0.0)
-    std::printf("                  at PrusaSlicer's own grid phase: %.6g -> %.6g mm^3 (%+.1f%%; its prediction for these files)\n",
+    std::printf("                  at PrusaSlicer's own grid phase: %.6g -> %.6g mm^3 (%+.1f%%; its prediction for these files as placed)\n",
                 f.support_slicer_phase_before_mm3, f.support_slicer_phase_after_mm3, f.support_slicer_phase_change_pct);
 }
 

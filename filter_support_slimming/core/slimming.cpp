@@ -90,22 +90,24 @@ std::string embed_and_write_back(const Surface& input, const EmbeddedDomain& dom
   return why;
 }
 
-// The support model's estimate for positions of the input's mesh (mm³); 0 when the run does not
-// measure it (no model), and `unmeasurable` when the model refuses the surface (a part with no
-// height, say): the input is then judged by the shadow volume alone, an iterate never chosen.
-// At the slicer's own phase (slicer_phase): one grid phase, two turns (support_model.h).
-double support_estimate(const SupportModel* model, const Points& V, const SlimmingOptions& o, double unmeasurable,
-                        bool slicer_phase = false) {
-  if (!model) return 0.0;
+// The support model's estimate for positions of the input's mesh (mm³): the mean over grid phases
+// and the slicer's own phase; 0 when the run does not measure it (no model), and `unmeasurable`
+// when the model refuses the surface (a part with no height, say): the input is then judged by the
+// shadow volume alone, an iterate never chosen.
+struct Support {
+  double mean = 0.0, slicer_phase = 0.0;
+};
+Support support_estimate(const SupportModel* model, const Points& V, const SlimmingOptions& o, double unmeasurable) {
+  if (!model) return {};
   SupportModelOptions m;
   m.print_direction = o.print_direction;
   m.alpha_max_deg = o.alpha_max_deg;
   m.threads = o.threads;
-  if (slicer_phase) m.grid_phases = 1, m.turns = 2;
   try {
-    return model->estimate(V, m).volume_mm3;
+    const SupportEstimate e = model->estimate(V, m);
+    return {e.volume_mm3, e.phase_mm3.front()};  // phase 0: the cells as the slicer lays them
   } catch (const std::invalid_argument&) {
-    return unmeasurable;
+    return {unmeasurable, unmeasurable};
   }
 }
 
@@ -137,7 +139,9 @@ std::string iterate(SupportSlimmer& slimmer, const Surface& input, const Support
     }
     if (r.support_before_mm3 > 0.0) {
       const auto started = std::chrono::steady_clock::now();
-      st.support_estimate = support_estimate(model, slimmer.surface_positions(), o, std::nan(""));
+      const Support support = support_estimate(model, slimmer.surface_positions(), o, std::nan(""));
+      st.support_estimate = support.mean;
+      st.support_slicer_phase = support.slicer_phase;
       r.stage_seconds.support_model += seconds_since(started);
     }
     r.history.push_back(st);
@@ -147,6 +151,7 @@ std::string iterate(SupportSlimmer& slimmer, const Surface& input, const Support
       r.after = slimmer.overhang();
       r.displacement = slimmer.displacement();
       r.support_after_mm3 = st.support_estimate;
+      r.support_slicer_phase_after_mm3 = st.support_slicer_phase;
       r.iterations = it;
     }
     report(0.1 + 0.9 * it / o.max_iterations, "iteration " + std::to_string(it) + ": risky area " + std::to_string(st.risky_area));
@@ -179,7 +184,9 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
   const std::optional<SupportModel> model =
       coherence_of(o).choose_by_support_model ? std::make_optional<SupportModel>(input.F, input.V.rows()) : std::nullopt;
   const SupportModel* judge = model ? &*model : nullptr;
-  r.support_before_mm3 = r.support_after_mm3 = r.history[0].support_estimate = support_estimate(judge, input.V, o, 0.0);
+  const Support given = support_estimate(judge, input.V, o, 0.0);
+  r.support_before_mm3 = r.support_after_mm3 = r.history[0].support_estimate = given.mean;
+  r.support_slicer_phase_before_mm3 = r.support_slicer_phase_after_mm3 = r.history[0].support_slicer_phase = given.slicer_phase;
   const double budget = deviation_budget(o, diag);
   r.deviation_budget_mm = std::isfinite(budget) ? budget : 0.0;
   auto finish = [&](const std::string& why) {
@@ -201,12 +208,6 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
   SupportSlimmer slimmer(checked, std::move(domain), r.before, o, report);
   r.solver_backend = slimmer.backend_name();
   std::string why = iterate(slimmer, input, judge, o, report, r);
-  if (r.support_before_mm3 > 0.0) {
-    const auto started = std::chrono::steady_clock::now();
-    r.support_slicer_phase_before_mm3 = support_estimate(judge, input.V, o, 0.0, true);
-    r.support_slicer_phase_after_mm3 = support_estimate(judge, r.surface.V, o, 0.0, true);
-    r.stage_seconds.support_model += seconds_since(started);
-  }
   // The result is the best iterate; its statistics close the history.
   r.history.resize(static_cast<size_t>(r.iterations) + 1);
   r.volume_after = signed_volume(r.surface);

@@ -173,6 +173,9 @@ struct IterationStats {
   // mm³: the support the slicer builds, estimated by the support model (support_model.h); 0 when
   // the run does not measure it (CoherenceOptions::choose_by_support_model off).
   double support_estimate = 0.0;
+  // mm³: the same estimate at the slicer's own grid phase (its first phase, SupportEstimate::
+  // phase_mm3[0]); 0 when not measured.
+  double support_slicer_phase = 0.0;
   // % of the interior edge length creased against the input (shape_metrics.h); 0 when the run
   // does not measure it (CoherenceOptions::max_crease_share_pct off).
   double crease_share_pct = 0.0;
@@ -213,8 +216,9 @@ struct SlimmingResult {
   // part against the grid).
   double support_before_mm3 = 0.0, support_after_mm3 = 0.0;
   // The same at the slicer's own grid phase (PrusaSlicer centres its grid on the part's bounding
-  // box), lines along x and along y averaged: the model's prediction of what the slicer builds for
-  // these very parts, as the judge slices them (mm³; 0 when not measured).
+  // box), the part as placed (support lines along x): the model's prediction of what the slicer
+  // builds for these very parts (mm³; 0 when not measured). It comes with the estimates above, the
+  // first of the phases they average.
   double support_slicer_phase_before_mm3 = 0.0, support_slicer_phase_after_mm3 = 0.0;
   std::vector<IterationStats> history;  // history[0] is the input, one entry per kept iteration
   int iterations = 0;                 // the iteration the result comes from (0: the input)

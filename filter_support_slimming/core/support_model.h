@@ -125,7 +125,8 @@ struct SupportEstimate {
   double first_layer_mm3 = 0.0;       // the first layer, expanded and dense
   double min_phase_mm3 = 0.0;         // the smallest and largest phase's volume: the jitter the
   double max_phase_mm3 = 0.0;         // average removes
-  std::vector<double> phase_mm3;      // every phase's (and turn's) volume, in order
+  std::vector<double> phase_mm3;      // every phase's (and turn's) volume, in order; the first is
+                                      // the slicer's own phase, as grid_phases = 1 gives it
   double contact_area_mm2 = 0.0;      // area of the cells with an overhang contact, summed over
                                       // layers (phase mean): the footprint
   double landing_area_mm2 = 0.0;      // area where columns land on the part (phase mean)

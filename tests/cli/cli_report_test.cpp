@@ -59,10 +59,9 @@ TEST(CliReport, FiguresAreThoseOfTheFilesWritten) {
   EXPECT_NEAR(f.at("support_estimate_before_mm3"), estimate_support(in).volume_mm3, 1e-9 * f.at("support_estimate_before_mm3"));
   EXPECT_NEAR(f.at("support_estimate_after_mm3"), estimate_support(slimmed).volume_mm3, 1e-3 * f.at("support_estimate_after_mm3"));
   EXPECT_LT(f.at("support_estimate_after_mm3"), f.at("support_estimate_before_mm3"));
-  // And at the slicer's own grid phase (one phase, lines along x and y): the prediction for these files.
+  // And at the slicer's own grid phase (one phase, the part as placed): the prediction for these files.
   SupportModelOptions at_phase;
   at_phase.grid_phases = 1;
-  at_phase.turns = 2;
   EXPECT_NEAR(f.at("support_slicer_phase_before_mm3"), estimate_support(in, at_phase).volume_mm3, 1e-9 * f.at("support_estimate_before_mm3"));
   EXPECT_NEAR(f.at("support_slicer_phase_after_mm3"), estimate_support(slimmed, at_phase).volume_mm3,
               1e-3 * f.at("support_estimate_after_mm3"));

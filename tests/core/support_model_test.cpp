@@ -245,6 +245,19 @@ TEST(SupportModel, ASpeckThatMovesTheGridBarelyMovesTheAverage) {
   EXPECT_LT(finer, average);
 }
 
+// The first phase of the mean is the slicer's own (the grid centred on the part's box), bit for bit:
+// the optimizer reads the prediction for the file as placed from the estimate it makes anyway.
+TEST(SupportModel, TheFirstPhaseIsTheSlicersOwn) {
+  for (const Surface& s : {test::t_shape(), test::refined(test::arch(), 1), test::box_with_windows(5.0)}) {
+    SupportModelOptions own;
+    own.grid_phases = 1;
+    const SupportEstimate mean = estimate_support(s), one = estimate_support(s, own);
+    ASSERT_EQ(mean.phase_mm3.size(), 4u);
+    EXPECT_EQ(mean.phase_mm3.front(), one.volume_mm3);
+    EXPECT_GT(one.volume_mm3, 0.0);
+  }
+}
+
 TEST(SupportModel, ThePartsAndTheLayersAddUpToTheWhole) {
   const SupportEstimate e = estimate_support(test::merge(slab_on_stem(10.0, 20.0), test::box({-8, -8, 0}, {8, 8, 8})));
   ASSERT_GT(e.bottom_interface_mm3, 0.0);
