@@ -71,37 +71,46 @@ double signed_volume(const Surface& s) {
 
 EdgeTopology edge_topology(const Surface& s) {
   struct HalfEdge {
-    int lo, hi;
+    int hi;
     bool forward;
     int face;
   };
-  std::vector<HalfEdge> edges;
-  edges.reserve(static_cast<size_t>(3 * s.F.rows()));
-  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
-    if (s.F(f, 0) == s.F(f, 1) || s.F(f, 1) == s.F(f, 2) || s.F(f, 2) == s.F(f, 0)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
-      edges.push_back({std::min(a, b), std::max(a, b), a < b, static_cast<int>(f)});
-    }
-  }
-  std::sort(edges.begin(), edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
-  });
+  // The half-edges of the faces with three vertices, bucketed by their lower vertex (a counting
+  // sort), each bucket sorted by (higher vertex, face): the order of a sort by (lo, hi, face).
+  const Eigen::Index nv = s.V.rows();
+  auto proper = [&](Eigen::Index f) { return s.F(f, 0) != s.F(f, 1) && s.F(f, 1) != s.F(f, 2) && s.F(f, 2) != s.F(f, 0); };
+  std::vector<int> begin(static_cast<size_t>(nv) + 1, 0);
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f)
+    if (proper(f))
+      for (int k = 0; k < 3; ++k) ++begin[static_cast<size_t>(std::min(s.F(f, k), s.F(f, (k + 1) % 3))) + 1];
+  for (size_t v = 0; v < static_cast<size_t>(nv); ++v) begin[v + 1] += begin[v];
+  std::vector<HalfEdge> edges(static_cast<size_t>(begin.back()));
+  std::vector<int> fill(begin.begin(), begin.end() - 1);
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f)
+    if (proper(f))
+      for (int k = 0; k < 3; ++k) {
+        const int a = s.F(f, k), b = s.F(f, (k + 1) % 3);
+        edges[static_cast<size_t>(fill[static_cast<size_t>(std::min(a, b))]++)] = {std::max(a, b), a < b, static_cast<int>(f)};
+      }
   EdgeTopology t;
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
-    const std::string name = "(" + std::to_string(edges[i].lo) + ", " + std::to_string(edges[i].hi) + ")";
-    if (j - i == 1) {
-      if (t.open_edges++ == 0) t.first_open = name;
-    } else if (j - i > 2) {
-      if (t.nonmanifold_edges++ == 0) t.first_nonmanifold = name + " is shared by " + std::to_string(j - i) + " faces";
-    } else if (edges[i].forward == edges[i + 1].forward) {
-      if (t.flipped_edges++ == 0)
-        t.first_flipped = "faces " + std::to_string(edges[i].face) + " and " + std::to_string(edges[i + 1].face) +
-                          " run along edge " + name + " in the same direction";
+  for (Eigen::Index lo = 0; lo < nv; ++lo) {
+    const auto first = edges.begin() + begin[static_cast<size_t>(lo)], last = edges.begin() + begin[static_cast<size_t>(lo) + 1];
+    std::sort(first, last, [](const HalfEdge& x, const HalfEdge& y) { return std::tie(x.hi, x.face) < std::tie(y.hi, y.face); });
+    for (auto i = first; i != last;) {
+      auto j = i;
+      while (j != last && j->hi == i->hi) ++j;
+      auto name = [&] { return "(" + std::to_string(lo) + ", " + std::to_string(i->hi) + ")"; };
+      if (j - i == 1) {
+        if (t.open_edges++ == 0) t.first_open = name();
+      } else if (j - i > 2) {
+        if (t.nonmanifold_edges++ == 0) t.first_nonmanifold = name() + " is shared by " + std::to_string(j - i) + " faces";
+      } else if (i->forward == (i + 1)->forward) {
+        if (t.flipped_edges++ == 0)
+          t.first_flipped = "faces " + std::to_string(i->face) + " and " + std::to_string((i + 1)->face) + " run along edge " +
+                            name() + " in the same direction";
+      }
+      i = j;
     }
-    i = j;
   }
   return t;
 }
