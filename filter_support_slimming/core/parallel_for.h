@@ -18,6 +18,7 @@
 // 0), so a library's regions with a fixed team size run on the calling thread; restored after.
 #pragma once
 
+#include <algorithm>
 #include <climits>
 #include <exception>
 #include <stdexcept>
@@ -96,10 +97,13 @@ class FirstFailure {
   std::exception_ptr error_;
 };
 
+// Iterations are handed out in chunks of up to 256 (cheap bodies, many of them), smaller when there
+// are few: a loop over 16 ranges or 4 phases must not go to one thread as one chunk.
 template <class Body>
 void parallel_for(int n, Body&& body) {
   FirstFailure failure;
-#pragma omp parallel for schedule(dynamic, 256)
+  const int chunk = std::max(1, std::min(256, n / (8 * omp_setting::threads())));
+#pragma omp parallel for schedule(dynamic, chunk)
   for (int i = 0; i < n; ++i) {
     try {
       body(i);

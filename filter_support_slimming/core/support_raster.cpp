@@ -1,6 +1,7 @@
 #include "core/support_raster.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -219,50 +220,64 @@ double crease_reach(const Vec3& a, const Vec3& b, const Vec3& n1, const Vec3& n2
 std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule) {
   const int nf = static_cast<int>(s.F.rows());
   const double cos_max = std::cos(rule.max_slope_deg * M_PI / 180.0), cos_dense = std::cos(rule.dense_slope_deg * M_PI / 180.0);
-  std::vector<char> kind(static_cast<size_t>(nf), 0);
-  std::vector<Vec3> normal(static_cast<size_t>(nf));
-  UnionFind regions(nf);
-  std::vector<int> across(static_cast<size_t>(3) * nf, -1);  // for the overhanging faces only
-  parallel_for(nf, [&](int f) {
+  auto normal_of = [&](int f) -> Vec3 {
     const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    normal[f] = (b - a).cross(c - a);
-    const double len = normal[f].norm();
-    const double down = len > 0 ? -normal[f].z() / len : 0.0;  // cos of the slope, for a face looking down
+    return (b - a).cross(c - a);
+  };
+  std::vector<char> kind(static_cast<size_t>(nf), 0);
+  parallel_for(nf, [&](int f) {
+    const Vec3 n = normal_of(f);
+    const double len = n.norm();
+    const double down = len > 0 ? -n.z() / len : 0.0;  // cos of the slope, for a face looking down
     kind[f] = down > cos_max ? (down > cos_dense ? 2 : 1) : 0;
-    for (int k = 0; k < 3 && kind[f]; ++k) across[3 * f + k] = adj.across(f, k).face;
   });
+  // The overhanging faces in increasing order, each with a slot: their normals, neighbours and
+  // regions are kept per slot (a few of the faces; the rest need none of it).
+  std::vector<int> over, slot(static_cast<size_t>(nf), -1);
   for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3 && kind[f]; ++k) {
-      const int g = across[3 * f + k];
-      if (g >= 0 && kind[g]) regions.join(f, g);
+    if (kind[f]) slot[f] = static_cast<int>(over.size()), over.push_back(f);
+  const int no = static_cast<int>(over.size());
+  std::vector<Vec3> normal(static_cast<size_t>(no));
+  std::vector<std::array<int, 3>> across(static_cast<size_t>(no));
+  parallel_for(no, [&](int i) {
+    normal[i] = normal_of(over[i]);
+    for (int k = 0; k < 3; ++k) across[i][k] = adj.across(over[i], k).face;
+  });
+  UnionFind regions(no);
+  for (int i = 0; i < no; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int g = across[i][k];
+      if (g >= 0 && kind[g]) regions.join(i, slot[g]);
     }
   // Per region (at its root): projected area, outline, sum of area × tan(slope), and along the
   // outline the length next to faces that look down or sideways, and that length × their cot.
   struct Region {
     double area = 0.0, outline = 0.0, area_tan = 0.0, side = 0.0, side_cot = 0.0;
   };
-  std::vector<Region> region(static_cast<size_t>(nf));
-  for (int f = 0; f < nf; ++f) {
-    if (!kind[f]) continue;
-    Region& r = region[regions.find(f)];
-    const double flat = std::abs(normal[f].z()), steep = normal[f].head<2>().norm();
+  std::vector<Region> region(static_cast<size_t>(no));
+  for (int i = 0; i < no; ++i) {
+    const int f = over[i];
+    Region& r = region[regions.find(i)];
+    const double flat = std::abs(normal[i].z()), steep = normal[i].head<2>().norm();
     r.area += 0.5 * flat;
     r.area_tan += 0.5 * steep;  // projected area × tan(slope) = half the normal's horizontal part
     for (int k = 0; k < 3; ++k) {
-      const int g = across[3 * f + k];
+      const int g = across[i][k];
       if (g >= 0 && kind[g]) continue;
       const double length = (s.V.row(s.F(f, (k + 1) % 3)) - s.V.row(s.F(f, k))).head<2>().norm();
       r.outline += length;
-      if (g < 0 || normal[g].z() > 0 || !(normal[g].head<2>().norm() > 0)) continue;
+      if (g < 0) continue;
+      const Vec3 ng = normal_of(g);
+      if (ng.z() > 0 || !(ng.head<2>().norm() > 0)) continue;
       r.side += length;
-      r.side_cot += length * -normal[g].z() / normal[g].head<2>().norm();
+      r.side_cot += length * -ng.z() / ng.head<2>().norm();
     }
   }
   const double reach = rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0);
   const double reach_dense = rule.layer_height / std::tan(rule.dense_slope_deg * M_PI / 180.0);
-  for (int f = 0; f < nf; ++f) {
-    if (!kind[f]) continue;
-    const Region& r = region[regions.find(f)];
+  for (int i = 0; i < no; ++i) {
+    const int f = over[i];
+    const Region& r = region[regions.find(i)];
     double seen = INFINITY;
     if (r.outline > 0 && r.area > 0) {
       const double width = 2.0 * r.area / r.outline, tan_slope = r.area_tan / r.area;
@@ -271,11 +286,13 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
     }
     kind[f] = seen > 0.5 * reach ? (kind[f] == 2 && seen > reach_dense ? 2 : 1) : 0;
   }
-  for (int f = 0; f < nf; ++f)  // on the edge of its region: a side with no overhanging face
+  for (int i = 0; i < no; ++i) {  // on the edge of its region: a side with no overhanging face
+    const int f = over[i];
     for (int k = 0; k < 3 && (kind[f] & 3); ++k) {
-      const int g = across[3 * f + k];
+      const int g = across[i][k];
       if (g < 0 || !(kind[g] & 3)) kind[f] |= 4;
     }
+  }
   return kind;
 }
 
