@@ -167,7 +167,7 @@ double CreaseMeter::share_pct(const Points& V) const {
   // As measure(), without the percentile's sort, and without an angle: the change exceeds the
   // threshold T exactly when the cosine of the difference of the two angles, from their sines
   // and cosines, is below cos T (the change lies in [0, 180]).
-  const Points n = face_normals(Surface{V, F_});
+  const Points n = face_normals(V, F_);
   const double cos_threshold = std::cos(options_.crease_threshold_deg / kDegrees);
   std::vector<char> state(edges_.size(), 0);  // 0 not measured, 1 measured, 2 creased
   parallel_for(static_cast<int>(edges_.size()), [&](int k) {

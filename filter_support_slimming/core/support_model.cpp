@@ -71,10 +71,10 @@ std::vector<std::pair<int, int>> phase_offsets(int per_cell, int phases) {
 
 // The part in the print frame, turned about +Z, resting on z = 0; its faces turned over when the
 // enclosed volume is negative (an inside-out part).
-Surface print_frame(const Surface& s, const SupportModelOptions& o, double turn) {
+Surface print_frame(const Points& V, const Triangles& F, const SupportModelOptions& o, double turn) {
   const Eigen::Matrix3d r = Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
                             rotation_to_up(o.print_direction.normalized());
-  Surface out{s.V * r.transpose(), s.F};
+  Surface out{V * r.transpose(), F};
   const double plate = out.V.col(2).minCoeff();
   out.V.col(2).array() -= plate;
   if (signed_volume(out) < 0) out = flipped(out);
@@ -99,11 +99,12 @@ PixelGrid raster_grid(const Surface& s, const SupportModelOptions& o) {
   return g;
 }
 
-// What every estimate checks first: the options, the positions and indices, some faces.
-void check_input(const Surface& surface, const SupportModelOptions& o) {
+// What every estimate checks first: the options, the positions (finite) and the faces (some, and
+// indices within the positions; a SupportModel checked them once).
+void check_input(const Points& V, const Triangles& F, const SupportModelOptions& o, bool faces_checked) {
   check_options(o);
-  check_surface(surface);
-  require(surface.F.rows() > 0, "the surface has no faces");
+  if (!faces_checked || !V.allFinite()) check_surface(Surface{V, faces_checked ? Triangles() : F});
+  require(F.rows() > 0, "the surface has no faces");
 }
 
 // Whether some edge of the faces is used by one face only: a hole, which the slicer's slices read
@@ -113,7 +114,8 @@ bool has_open_edges(const Triangles& faces, Eigen::Index vertices) {
 }
 
 // The estimate of a surface whose options and faces the caller has checked (check_input).
-SupportEstimate estimate_with(const Surface& surface, const FaceAdjacency& adjacency, bool open, const SupportModelOptions& o) {
+SupportEstimate estimate_with(const Points& V, const Triangles& F, const FaceAdjacency& adjacency, bool open,
+                              const SupportModelOptions& o) {
   const auto offsets = phase_offsets(o.pixels_per_cell, o.grid_phases);
   const GridSweepSettings settings = sweep_settings(o);
   OverhangRule rule;
@@ -129,7 +131,7 @@ SupportEstimate estimate_with(const Surface& surface, const FaceAdjacency& adjac
   SupportEstimate est;
   std::vector<GridSweepResult> runs;
   for (int t = 0; t < o.turns; ++t) {
-    const Surface frame = print_frame(surface, o, M_PI * t / o.turns);
+    const Surface frame = print_frame(V, F, o, M_PI * t / o.turns);
     const double height = frame.V.col(2).maxCoeff();
     require(height > 0, "the part has no height along the print direction");
     SlicerLayers layers;
@@ -198,14 +200,13 @@ SupportModel::SupportModel(SupportModel&&) noexcept = default;
 SupportEstimate SupportModel::estimate(const Points& V, const SupportModelOptions& o) const {
   require(V.rows() == impl_->vertices, "the positions have " + std::to_string(V.rows()) + " rows for a mesh of " +
                                            std::to_string(impl_->vertices) + " vertices");
-  const Surface surface{V, impl_->F};
-  check_input(surface, o);
-  return estimate_with(surface, impl_->adjacency, impl_->open, o);
+  check_input(V, impl_->F, o, true);
+  return estimate_with(V, impl_->F, impl_->adjacency, impl_->open, o);
 }
 
 SupportEstimate estimate_support(const Surface& surface, const SupportModelOptions& o) {
-  check_input(surface, o);
-  return estimate_with(surface, FaceAdjacency(surface), has_open_edges(surface.F, surface.V.rows()), o);
+  check_input(surface.V, surface.F, o, false);
+  return estimate_with(surface.V, surface.F, FaceAdjacency(surface), has_open_edges(surface.F, surface.V.rows()), o);
 }
 
 }  // namespace slim

@@ -11,19 +11,22 @@
 namespace slim {
 
 namespace {
-Eigen::Vector3d face_cross(const Surface& s, Eigen::Index f) {
-  const Eigen::Vector3d a = s.V.row(s.F(f, 0)).transpose();
-  const Eigen::Vector3d b = s.V.row(s.F(f, 1)).transpose();
-  const Eigen::Vector3d c = s.V.row(s.F(f, 2)).transpose();
+Eigen::Vector3d face_cross(const Points& V, const Triangles& F, Eigen::Index f) {
+  const Eigen::Vector3d a = V.row(F(f, 0)).transpose();
+  const Eigen::Vector3d b = V.row(F(f, 1)).transpose();
+  const Eigen::Vector3d c = V.row(F(f, 2)).transpose();
   return (b - a).cross(c - a);
 }
+Eigen::Vector3d face_cross(const Surface& s, Eigen::Index f) { return face_cross(s.V, s.F, f); }
 }  // namespace
 
-Points face_normals(const Surface& s) {
-  Points n(s.F.rows(), 3);
-#pragma omp parallel for schedule(static) if (s.F.rows() > 65536)
-  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
-    const Eigen::Vector3d c = face_cross(s, f);
+Points face_normals(const Surface& s) { return face_normals(s.V, s.F); }
+
+Points face_normals(const Points& V, const Triangles& F) {
+  Points n(F.rows(), 3);
+#pragma omp parallel for schedule(static) if (F.rows() > 65536)
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d c = face_cross(V, F, f);
     const double len = c.norm();
     // A face whose area underflows has no direction; zero keeps it out of every constraint.
     if (len > 0.0 && std::isfinite(len))

@@ -23,6 +23,7 @@ struct Surface {
 
 // #F by 3 unit normals; a zero-area face gets the zero vector (and area 0, so weight 0).
 Points face_normals(const Surface& s);
+Points face_normals(const Points& V, const Triangles& F);  // the same, for positions and faces held apart
 
 // #F areas, in squared mesh units.
 Eigen::VectorXd face_areas(const Surface& s);
