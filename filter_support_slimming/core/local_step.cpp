@@ -5,6 +5,8 @@
 
 #include "core/arap.h"
 #include "core/axis_rotation.h"
+#include "core/min_rotation.h"
+#include "core/near_repeats.h"
 #include "core/parallel_for.h"
 #include "core/polar.h"
 
@@ -13,13 +15,33 @@ namespace slim {
 TetPieces constraint_pieces(const Embedding& emb, Eigen::Index tets, const std::vector<bool>& plate,
                             const Points& rest_normals) {
   TetPieces pieces(static_cast<size_t>(tets));
-  for (Eigen::Index t = 0; t < tets; ++t)
+  parallel_for(static_cast<int>(tets), [&](int t) {
+    auto& mine = pieces[static_cast<size_t>(t)];
     for (int p = emb.tet_face_offsets(t); p < emb.tet_face_offsets(t + 1); ++p) {
       const int f = emb.tet_faces(p);
       if (plate[static_cast<size_t>(f)] || emb.tet_face_areas(p) <= 0.0 || rest_normals.row(f).squaredNorm() == 0.0)
         continue;
-      pieces[static_cast<size_t>(t)].emplace_back(f, emb.tet_face_areas(p));
+      mine.emplace_back(f, emb.tet_face_areas(p));
     }
+    if (mine.size() < 2) return;
+    // Normals closer than the minimal rotation's tolerance are one constraint (min_rotation.h): a
+    // piece joins the first such piece before it, which carries their area. Rotations keep the
+    // distances, so the merge made at rest holds in every iteration.
+    Eigen::Matrix3Xd normals(3, static_cast<Eigen::Index>(mine.size()));
+    for (size_t i = 0; i < mine.size(); ++i) normals.col(static_cast<Eigen::Index>(i)) = rest_normals.row(mine[i].first).transpose();
+    const std::vector<Eigen::Index> first = near_repeats(normals, kMinRotationFeasibilityTolerance);
+    std::vector<size_t> place(mine.size());  // of a kept piece, in the merged list
+    size_t kept = 0;
+    for (size_t i = 0; i < mine.size(); ++i) {
+      if (first[i] == static_cast<Eigen::Index>(i)) {
+        place[i] = kept;
+        mine[kept++] = mine[i];
+      } else {
+        mine[place[static_cast<size_t>(first[i])]].second += mine[i].second;
+      }
+    }
+    mine.resize(kept);
+  });
   return pieces;
 }
 

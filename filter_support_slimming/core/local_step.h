@@ -11,7 +11,10 @@
 //   pieces         #T lists of (face, area mm²): the surface faces that constrain tet t, clipped
 //                  to it (embedding.h), less the faces on the build plate and zero-area pieces.
 //                  Every non-plate piece constrains, not only the risky ones, so a rotation that
-//                  fixes one face never breaks a safe neighbour.
+//                  fixes one face never breaks a safe neighbour. Pieces whose normals lie closer
+//                  than the minimal rotation's tolerance are one constraint (near_repeats.h): the
+//                  first of them stays and carries their area (a subdivided or flat surface puts
+//                  hundreds of such faces in a tet).
 //   rest_normals   #F by 3 unit normals of the input (zero rows for zero-area faces)
 //   d, tau         unit print direction; tau = sin(alpha_max - margin): the step solves with a
 //                  small angular margin and every measurement uses alpha_max, so the global step

@@ -1,6 +1,7 @@
 #include "core/min_rotation.h"
 
 #include "core/convex_hull.h"
+#include "core/near_repeats.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -64,27 +65,10 @@ Eigen::Matrix3Xd nonzero_unit_columns(const Eigen::Matrix3Xd& normals) {
     const double length = normals.col(i).norm();
     if (length > 0.0) unit.col(count++) = normals.col(i) / length;
   }
-  // Sorted by x, the columns within the tolerance of one lie in a window around it.
-  constexpr double tol = kMinRotationFeasibilityTolerance;
-  std::vector<Eigen::Index> by_x(static_cast<size_t>(count)), where(static_cast<size_t>(count));
-  for (Eigen::Index i = 0; i < count; ++i) by_x[static_cast<size_t>(i)] = i;
-  std::sort(by_x.begin(), by_x.end(), [&](Eigen::Index a, Eigen::Index b) { return unit(0, a) < unit(0, b) || (unit(0, a) == unit(0, b) && a < b); });
-  for (size_t k = 0; k < by_x.size(); ++k) where[static_cast<size_t>(by_x[k])] = static_cast<Eigen::Index>(k);
-  std::vector<bool> repeat(static_cast<size_t>(count), false);
-  for (Eigen::Index i = 0; i < count; ++i) {  // in column order: the kept columns before i are final
-    const size_t at = static_cast<size_t>(where[static_cast<size_t>(i)]);
-    auto near_kept = [&](size_t k) {
-      const Eigen::Index j = by_x[k];
-      return j < i && !repeat[static_cast<size_t>(j)] && (unit.col(j) - unit.col(i)).squaredNorm() <= tol * tol;
-    };
-    for (size_t k = at; k-- > 0 && unit(0, by_x[k]) >= unit(0, i) - tol && !repeat[static_cast<size_t>(i)];)
-      repeat[static_cast<size_t>(i)] = near_kept(k);
-    for (size_t k = at + 1; k < by_x.size() && unit(0, by_x[k]) <= unit(0, i) + tol && !repeat[static_cast<size_t>(i)]; ++k)
-      repeat[static_cast<size_t>(i)] = near_kept(k);
-  }
+  const std::vector<Eigen::Index> first = near_repeats(unit.leftCols(count), kMinRotationFeasibilityTolerance);
   Eigen::Index kept = 0;
   for (Eigen::Index i = 0; i < count; ++i)
-    if (!repeat[static_cast<size_t>(i)]) unit.col(kept++) = unit.col(i);
+    if (first[static_cast<size_t>(i)] == i) unit.col(kept++) = unit.col(i);
   unit.conservativeResize(3, kept);
   return unit;
 }

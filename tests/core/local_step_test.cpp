@@ -1,0 +1,54 @@
+// The local step's constraint pieces (core/local_step.h): per tet, the faces it holds, with
+// normals closer than the minimal rotation's tolerance merged into one piece that carries their
+// area.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "core/embedded_domain.h"
+#include "core/local_step.h"
+#include "core/min_rotation.h"
+#include "support/shapes.h"
+
+namespace slim {
+namespace {
+
+TEST(LocalStep, PiecesWithOneNormalAreOneConstraintCarryingTheirArea) {
+  // A subdivided mushroom: each original triangle became 64 coplanar faces, whose normals differ
+  // in their last bits, many of them in one tet.
+  const Surface s = test::refined(test::mushroom(), 3);
+  const CheckedSurface checked(s);
+  SlimmingOptions o;
+  const EmbeddedDomain domain = embedded_domain(checked, Eigen::Vector3d::UnitZ(), o, [](double, const std::string&) {});
+  const Points n = face_normals(s);
+  const std::vector<bool> plate(static_cast<size_t>(s.F.rows()), false);
+  const TetPieces pieces = constraint_pieces(domain.embedding, domain.mesh.T.rows(), plate, n);
+  const Embedding& e = domain.embedding;
+  Eigen::Index merged = 0;
+  for (Eigen::Index t = 0; t < domain.mesh.T.rows(); ++t) {
+    const auto& mine = pieces[static_cast<size_t>(t)];
+    double area = 0.0;
+    for (int p = e.tet_face_offsets(t); p < e.tet_face_offsets(t + 1); ++p) {
+      if (!(e.tet_face_areas(p) > 0.0)) continue;
+      area += e.tet_face_areas(p);
+      // Every piece's normal is within the tolerance of a kept one (or is one).
+      bool near = false;
+      for (const auto& [face, a] : mine)
+        near = near || (n.row(face) - n.row(e.tet_faces(p))).norm() <= kMinRotationFeasibilityTolerance;
+      EXPECT_TRUE(near) << "tet " << t << " face " << e.tet_faces(p);
+    }
+    double kept_area = 0.0;
+    for (size_t i = 0; i < mine.size(); ++i) {
+      kept_area += mine[i].second;
+      for (size_t j = 0; j < i; ++j)  // the kept normals are apart, in the order of their faces
+        EXPECT_GT((n.row(mine[i].first) - n.row(mine[j].first)).norm(), kMinRotationFeasibilityTolerance) << t;
+      if (i > 0) EXPECT_LT(mine[i - 1].first, mine[i].first) << t;
+    }
+    EXPECT_NEAR(kept_area, area, 1e-12 * (1.0 + area)) << t;
+    merged += (e.tet_face_offsets(t + 1) - e.tet_face_offsets(t)) - static_cast<Eigen::Index>(mine.size());
+  }
+  EXPECT_GT(merged, s.F.rows() / 2) << "the subdivided faces should mostly merge";
+}
+
+}  // namespace
+}  // namespace slim
