@@ -3,9 +3,13 @@
 // iteration to one bare back-substitution of the same factor, measured in the same run.
 // --end-to-end F: then one whole run at the defaults (budget, stopping rule, the support model's
 // choice) on the bunny refined until it has at least F faces (4 levels: 940,544), stage by stage.
-//   slimming_stages [--runs N] [--iterations N] [--end-to-end FACES]
+// Refinement splits each triangle in four in its own plane, so the faces of one original triangle
+// share a normal (to the last bits), which the local step merges; a scan has no such faces:
+// --jitter MM moves every vertex of the refined bunny by up to MM (a fixed seed), so none do.
+//   slimming_stages [--runs N] [--iterations N] [--end-to-end FACES] [--jitter MM]
 #include <algorithm>
 #include <chrono>
+#include <random>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -37,11 +41,13 @@ long peak_rss_mb() {
 int main(int argc, char** argv) {
   int runs = 5, iterations = 20;
   long end_to_end = 0;
+  double jitter = 0.0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--runs") runs = std::stoi(argv[i + 1]);
     if (a == "--iterations") iterations = std::stoi(argv[i + 1]);
     if (a == "--end-to-end") end_to_end = std::stol(argv[i + 1]);
+    if (a == "--jitter") jitter = std::stod(argv[i + 1]);
   }
   const Surface bunny = test::load_mesh(test::sample_bunny_path());
   std::printf("median of %d runs of up to %d iterations, no budget, no stall stop; times in ms, per iteration\n"
@@ -98,6 +104,14 @@ int main(int argc, char** argv) {
   if (end_to_end > 0) {
     Surface big = bunny;
     while (big.F.rows() < end_to_end) big = test::refined(big, 1);
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (Eigen::Index v = 0; v < big.V.rows() && jitter > 0.0; ++v) {
+      Eigen::RowVector3d step;
+      do step << unit(rng), unit(rng), unit(rng);
+      while (step.squaredNorm() > 1.0);
+      big.V.row(v) += jitter * step;
+    }
     std::vector<double> total;
     SlimmingResult r;
     for (int k = 0; k < runs; ++k) {
@@ -106,6 +120,7 @@ int main(int argc, char** argv) {
       total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     const auto& s = r.stage_seconds;
+    if (jitter > 0.0) std::printf("(every vertex moved by up to %g mm)\n", jitter);
     std::printf("end to end, defaults, %ld faces: median %.2f s of %d runs; last run: %d iterations (returned %d); "
                 "domain %.2f, embedding %.2f, factor %.2f, local %.2f, global %.2f, guards and statistics %.2f, "
                 "support model %.2f, crease limit %.2f s\n", static_cast<long>(big.F.rows()), median(total), runs, r.iterations_run,
