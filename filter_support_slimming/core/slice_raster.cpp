@@ -17,7 +17,8 @@ struct RowCrossing {
   bool operator<(const RowCrossing& o) const { return row != o.row ? row < o.row : x < o.x; }
 };
 
-// The pixel centres that closed polylines wind around (nonzero rule), as 0/1 per pixel. Each
+// The pixel centres that closed polylines wind around (nonzero rule), as 0/1 per pixel of the rows
+// the polylines cross (the caller clears the others). Each
 // polyline's last point joins its first. A centre exactly on an edge going up or down counts on one
 // side only (edges are half-open in y), so polygons that share an edge tile without gap or overlap.
 void fill_pixels(const std::vector<const Polyline2*>& polygons, const PixelGrid& g, char* pixels) {
@@ -72,33 +73,54 @@ void rasterize_slices(const Surface& s, const FaceAdjacency& adj, const Overhang
   for (int k = 0; slice_z(k) <= top; ++k) heights.push_back(slice_z(k));
   const std::vector<LayerSlice> slices = slice_layers(s, adj, heights, rule.slice_max_gap);
   const int layers = static_cast<int>(heights.size()), n = g.count();
-  // Per slice: the pixels it fills, and where it lost chains, the pixels it would fill with them.
-  std::vector<char> solid(static_cast<size_t>(layers) * n, 0), with_lost(solid.size(), 0);
-  parallel_for(layers, [&](int k) {
-    const size_t at = static_cast<size_t>(k) * n;
-    fill_pixels(pointers(slices[k].loops), g, solid.data() + at);
-    if (!slices[k].dropped.empty()) fill_pixels(pointers(slices[k].loops, &slices[k].dropped), g, with_lost.data() + at);
-  });
-  out.span_begin.assign(static_cast<size_t>(n) + 1, 0);
-  out.spans.clear();
-  for (int p = 0; p < n; ++p) {
-    out.span_begin[p] = static_cast<int>(out.spans.size());
-    for (int k = 0; k < layers;) {
-      if (!solid[static_cast<size_t>(k) * n + p]) {
-        ++k;
-        continue;
-      }
-      const int k0 = k;
-      while (k < layers && solid[static_cast<size_t>(k) * n + p]) ++k;
-      out.spans.push_back({slice_z(k0) - 0.25 * layer, slice_z(k - 1) + 0.25 * layer});
+  // The slices in blocks of layers, filled in parallel: per slice the pixels it fills, and where it
+  // lost chains, the pixels it would fill with them. The memory is a block's, whatever the height.
+  constexpr int kBlock = 32;
+  std::vector<char> solid(static_cast<size_t>(kBlock + 1) * n, 0), with_lost(solid.size(), 0);  // row 0: the layer below
+  struct Run {
+    int pixel, k0, k1;
+  };
+  std::vector<Run> runs;
+  std::vector<int> run_start(static_cast<size_t>(n), -1);
+  for (int k0 = 0; k0 < layers; k0 += kBlock) {
+    const int count = std::min(kBlock, layers - k0);
+    if (k0 > 0) {  // the last layer of the previous block becomes the layer below
+      std::copy_n(solid.begin() + static_cast<ptrdiff_t>(kBlock) * n, n, solid.begin());
+      std::copy_n(with_lost.begin() + static_cast<ptrdiff_t>(kBlock) * n, n, with_lost.begin());
     }
-    for (int k = 1; k < layers; ++k) {
-      const size_t here = static_cast<size_t>(k) * n + p, below = here - n;
-      if (slices[k - 1].dropped.empty() || !solid[here] || solid[below] || !with_lost[below]) continue;
-      out.overhangs.push_back({p, k, k, true});
+    parallel_for(count, [&](int i) {
+      const size_t at = static_cast<size_t>(i + 1) * n;
+      const LayerSlice& slice = slices[static_cast<size_t>(k0 + i)];
+      std::fill_n(solid.begin() + static_cast<ptrdiff_t>(at), n, 0);
+      fill_pixels(pointers(slice.loops), g, solid.data() + at);
+      if (slice.dropped.empty()) return;
+      std::fill_n(with_lost.begin() + static_cast<ptrdiff_t>(at), n, 0);
+      fill_pixels(pointers(slice.loops, &slice.dropped), g, with_lost.data() + at);
+    });
+    for (int i = 0; i < count; ++i) {
+      const int k = k0 + i;
+      const char* here = solid.data() + static_cast<size_t>(i + 1) * n;
+      const char* below = solid.data() + static_cast<size_t>(i) * n;
+      const char* below_with_lost = with_lost.data() + static_cast<size_t>(i) * n;
+      const bool lost_below = k > 0 && !slices[static_cast<size_t>(k - 1)].dropped.empty();
+      for (int p = 0; p < n; ++p) {
+        int& start = run_start[static_cast<size_t>(p)];
+        if (here[p] && start < 0) start = k;
+        if (!here[p] && start >= 0) runs.push_back({p, start, k - 1}), start = -1;
+        if (lost_below && here[p] && !below[p] && below_with_lost[p]) out.overhangs.push_back({p, k, k, true});
+      }
     }
   }
-  out.span_begin[n] = static_cast<int>(out.spans.size());
+  for (int p = 0; p < n; ++p)
+    if (run_start[static_cast<size_t>(p)] >= 0) runs.push_back({p, run_start[static_cast<size_t>(p)], layers - 1});
+  // The runs by pixel (a stable counting sort: each pixel's runs stay in upward order).
+  out.span_begin.assign(static_cast<size_t>(n) + 1, 0);
+  for (const Run& r : runs) ++out.span_begin[static_cast<size_t>(r.pixel) + 1];
+  for (int p = 0; p < n; ++p) out.span_begin[p + 1] += out.span_begin[p];
+  out.spans.assign(runs.size(), SolidSpan{});
+  std::vector<int> fill(out.span_begin.begin(), out.span_begin.end() - 1);
+  for (const Run& r : runs)
+    out.spans[static_cast<size_t>(fill[static_cast<size_t>(r.pixel)]++)] = {slice_z(r.k0) - 0.25 * layer, slice_z(r.k1) + 0.25 * layer};
 }
 
 }  // namespace slim

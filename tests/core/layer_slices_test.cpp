@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <set>
+#include <tuple>
 
 #include "core/face_adjacency.h"
 #include "core/layer_slices.h"
@@ -185,6 +186,87 @@ TEST(SliceRaster, TheSliceAboveALostContourStandsOnNothing) {
   // lost slices.
   const SupportRaster shut = build_support_raster(closed, FaceAdjacency(closed), g, rule);
   EXPECT_EQ(r.overhangs.size(), shut.overhangs.size() + static_cast<size_t>(inside));
+}
+
+// The winding number of closed polylines around a point (each polyline's last point joins its
+// first): the plain sum over edges, for the reference below.
+int winding(const std::vector<const Polyline2*>& polygons, const Eigen::Vector2d& c) {
+  int w = 0;
+  for (const Polyline2* poly : polygons)
+    for (size_t i = 0; i < poly->size(); ++i) {
+      const Eigen::Vector2d& p = (*poly)[i];
+      const Eigen::Vector2d& q = (*poly)[(i + 1) % poly->size()];
+      if ((p.y() <= c.y()) == (q.y() <= c.y())) continue;
+      const double x = p.x() + (c.y() - p.y()) / (q.y() - p.y()) * (q.x() - p.x());
+      if (x < c.x()) w += q.y() > p.y() ? -1 : 1;
+    }
+  return w;
+}
+
+TEST(SliceRaster, EqualsEveryPixelAndSliceTestedOnItsOwn) {
+  // A ball with a window in its side (faces beyond x = 7 removed: slices through it have gaps up
+  // to 14 mm, and near its top and bottom under 2 mm, which the slicer closes), tall enough for
+  // several of the raster's blocks of slices.
+  const Surface ball = test::icosphere(3, 10.0, {0.123, -0.071, 10.0});
+  std::vector<Eigen::Vector3i> kept;
+  for (Eigen::Index f = 0; f < ball.F.rows(); ++f) {
+    double cx = 0;
+    for (int k = 0; k < 3; ++k) cx += ball.V(ball.F(f, k), 0) / 3.0;
+    if (cx < 7.0) kept.emplace_back(ball.F.row(f).transpose());
+  }
+  Surface open{ball.V, Triangles(static_cast<Eigen::Index>(kept.size()), 3)};
+  for (size_t f = 0; f < kept.size(); ++f) open.F.row(static_cast<Eigen::Index>(f)) = kept[f].transpose();
+  open.V.col(2).array() -= open.V.col(2).minCoeff();
+  const FaceAdjacency adj(open);
+  const PixelGrid g = grid_over(open, 0.714);
+  OverhangRule rule;
+  rule.slices = true;
+  const SupportRaster r = build_support_raster(open, adj, g, rule);
+  const SlicerLayers L = layers_of(open);
+  std::vector<double> heights;
+  for (int k = 0; L.slice_z(k) <= open.V.col(2).maxCoeff(); ++k) heights.push_back(L.slice_z(k));
+  ASSERT_GT(heights.size(), 64u);
+  const std::vector<LayerSlice> slices = slice_layers(open, adj, heights, rule.slice_max_gap);
+  std::vector<std::set<int>> solid(static_cast<size_t>(g.count()));
+  std::set<std::pair<int, int>> lost_below;  // (pixel, layer) of the overhangs the lost slices make
+  int dropped_layers = 0;
+  for (size_t k = 0; k < heights.size(); ++k) {
+    std::vector<const Polyline2*> loops, with_lost;
+    for (const Polyline2& p : slices[k].loops) loops.push_back(&p), with_lost.push_back(&p);
+    for (const Polyline2& p : slices[k].dropped) with_lost.push_back(&p);
+    dropped_layers += !slices[k].dropped.empty();
+    std::vector<const Polyline2*> below, below_lost;
+    if (k > 0) {
+      for (const Polyline2& p : slices[k - 1].loops) below.push_back(&p), below_lost.push_back(&p);
+      for (const Polyline2& p : slices[k - 1].dropped) below_lost.push_back(&p);
+    }
+    for (int p = 0; p < g.count(); ++p) {
+      const Eigen::Vector2d c(g.x0 + (p % g.nx + 0.5) * g.pixel, g.y0 + (p / g.nx + 0.5) * g.pixel);
+      const bool here = winding(loops, c) != 0;
+      if (here) solid[static_cast<size_t>(p)].insert(static_cast<int>(k));
+      if (k > 0 && !slices[k - 1].dropped.empty() && here && winding(below, c) == 0 && winding(below_lost, c) != 0)
+        lost_below.insert({p, static_cast<int>(k)});
+    }
+  }
+  EXPECT_GT(dropped_layers, 10);
+  EXPECT_EQ(solid_layers(r, L), solid);
+  std::set<std::pair<int, int>> marked;
+  const SupportRaster shut = build_support_raster(open, adj, g, OverhangRule{});  // the faces' own overhangs
+  std::multiset<std::tuple<int, int, int, bool>> faces_only, all;
+  for (const PixelOverhang& o : shut.overhangs) faces_only.insert({o.pixel, o.layer_low, o.layer_high, o.dense});
+  for (const PixelOverhang& o : r.overhangs) all.insert({o.pixel, o.layer_low, o.layer_high, o.dense});
+  for (const auto& o : faces_only) {
+    auto it = all.find(o);
+    ASSERT_NE(it, all.end());
+    all.erase(it);
+  }
+  for (const auto& [pixel, low, high, dense] : all) {
+    EXPECT_EQ(low, high);
+    EXPECT_TRUE(dense);
+    marked.insert({pixel, low});
+  }
+  EXPECT_EQ(marked, lost_below);
+  EXPECT_FALSE(lost_below.empty());
 }
 
 }  // namespace
