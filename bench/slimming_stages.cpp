@@ -36,6 +36,34 @@ long peak_rss_mb() {
   if (f) std::fclose(f);
   return kb / 1024;
 }
+// One whole run at the defaults on the bunny refined to at least `faces`, every vertex moved by up
+// to `jitter` mm (a fixed seed), stage by stage.
+void run_end_to_end(const Surface& bunny, long faces, double jitter, int runs) {
+  Surface big = bunny;
+  while (big.F.rows() < faces) big = test::refined(big, 1);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (Eigen::Index v = 0; v < big.V.rows() && jitter > 0.0; ++v) {
+    Eigen::RowVector3d step;
+    do step << unit(rng), unit(rng), unit(rng);
+    while (step.squaredNorm() > 1.0);
+    big.V.row(v) += jitter * step;
+  }
+  std::vector<double> total;
+  SlimmingResult r;
+  for (int k = 0; k < runs; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    r = slim_supports(big, {});
+    total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  const auto& s = r.stage_seconds;
+  if (jitter > 0.0) std::printf("(every vertex moved by up to %g mm)\n", jitter);
+  std::printf("end to end, defaults, %ld faces: median %.2f s of %d runs; last run: %d iterations (returned %d); "
+              "domain %.2f, embedding %.2f, factor %.2f, local %.2f, global %.2f, guards and statistics %.2f, "
+              "support model %.2f, crease limit %.2f s\n", static_cast<long>(big.F.rows()), median(total), runs, r.iterations_run,
+              r.iterations, s.domain, s.embedding, s.factorization, s.local, s.global, s.measure, s.support_model, s.creases);
+  std::printf("peak memory (VmHWM): %ld MB\n", peak_rss_mb());
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -101,31 +129,6 @@ int main(int argc, char** argv) {
                 median(dom) + median(emb) + median(fac) + 50 * per_it, median(total));
   }
   std::printf("peak memory (VmHWM): %ld MB\n", peak_rss_mb());
-  if (end_to_end > 0) {
-    Surface big = bunny;
-    while (big.F.rows() < end_to_end) big = test::refined(big, 1);
-    std::mt19937 rng(1);
-    std::uniform_real_distribution<double> unit(-1.0, 1.0);
-    for (Eigen::Index v = 0; v < big.V.rows() && jitter > 0.0; ++v) {
-      Eigen::RowVector3d step;
-      do step << unit(rng), unit(rng), unit(rng);
-      while (step.squaredNorm() > 1.0);
-      big.V.row(v) += jitter * step;
-    }
-    std::vector<double> total;
-    SlimmingResult r;
-    for (int k = 0; k < runs; ++k) {
-      const auto t0 = std::chrono::steady_clock::now();
-      r = slim_supports(big, {});
-      total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    }
-    const auto& s = r.stage_seconds;
-    if (jitter > 0.0) std::printf("(every vertex moved by up to %g mm)\n", jitter);
-    std::printf("end to end, defaults, %ld faces: median %.2f s of %d runs; last run: %d iterations (returned %d); "
-                "domain %.2f, embedding %.2f, factor %.2f, local %.2f, global %.2f, guards and statistics %.2f, "
-                "support model %.2f, crease limit %.2f s\n", static_cast<long>(big.F.rows()), median(total), runs, r.iterations_run,
-                r.iterations, s.domain, s.embedding, s.factorization, s.local, s.global, s.measure, s.support_model, s.creases);
-    std::printf("peak memory (VmHWM): %ld MB\n", peak_rss_mb());
-  }
+  if (end_to_end > 0) run_end_to_end(bunny, end_to_end, jitter, runs);
   return 0;
 }

@@ -166,19 +166,27 @@ double CreaseMeter::share_pct(const Points& V) const {
   require_same_vertex_count(vertices_, V.rows());
   // As measure(), without the percentile's sort, and without an angle: the change exceeds the
   // threshold T exactly when the cosine of the difference of the two angles, from their sines
-  // and cosines, is below cos T (the change lies in [0, 180]).
-  const Points n = face_normals(V, F_);
+  // and cosines, is below cos T (the change lies in [0, 180]). Nothing is normalised: the faces'
+  // cross products N0, N1 and the edge E give the cosine and sine both scaled by |N0| |N1| |E|,
+  // which the comparison divides out.
+  const Eigen::Index nf = F_.rows();
+  Points cross(nf, 3);
+  parallel_for(static_cast<int>(nf), [&](int f) {
+    const Eigen::RowVector3d a = V.row(F_(f, 0));
+    cross.row(f) = (V.row(F_(f, 1)) - a).cross(V.row(F_(f, 2)) - a);
+  });
   const double cos_threshold = std::cos(options_.crease_threshold_deg / kDegrees);
   std::vector<char> state(edges_.size(), 0);  // 0 not measured, 1 measured, 2 creased
   parallel_for(static_cast<int>(edges_.size()), [&](int k) {
     const DihedralEdge& e = edges_[static_cast<size_t>(k)];
-    if (!has_area(n, e.f0) || !has_area(n, e.f1)) return;
-    const Eigen::Vector3d n0 = n.row(e.f0).transpose(), n1 = n.row(e.f1).transpose();
-    const Eigen::Vector3d dir = (V.row(e.v1) - V.row(e.v0)).transpose().normalized();
-    const double cos_new = n0.dot(n1), sin_new = n0.cross(n1).dot(dir);
+    const Eigen::Vector3d n0 = cross.row(e.f0).transpose(), n1 = cross.row(e.f1).transpose();
+    const Eigen::Vector3d edge = (V.row(e.v1) - V.row(e.v0)).transpose();
+    const double length = edge.norm();
+    const double cos_new = n0.dot(n1) * length, sin_new = n0.cross(n1).dot(edge);
     const double scale = std::hypot(cos_new, sin_new);
-    const double cos_change = (cos_new * cos_in_[static_cast<size_t>(k)] + sin_new * sin_in_[static_cast<size_t>(k)]) / scale;
-    state[static_cast<size_t>(k)] = !(scale > 0.0) ? 0 : cos_change < cos_threshold ? 2 : 1;
+    const double cos_change = cos_new * cos_in_[static_cast<size_t>(k)] + sin_new * sin_in_[static_cast<size_t>(k)];
+    const bool area = n0.squaredNorm() > 0.0 && n1.squaredNorm() > 0.0 && std::isfinite(scale);
+    state[static_cast<size_t>(k)] = !area || !(scale > 0.0) ? 0 : cos_change < cos_threshold * scale ? 2 : 1;
   });
   double creased = 0.0, total = 0.0;
   for (size_t k = 0; k < edges_.size(); ++k) {

@@ -330,29 +330,6 @@ TEST(MinRotation, DuplicatesChangeNothing) {
   }
 }
 
-// A subdivided flat face gives hundreds of normals that differ only in their last bits: closer
-// than the feasibility tolerance, they are one constraint, and the answer is that of the distinct
-// normals alone, bit for bit (the first of each group is kept).
-TEST(MinRotation, NormalsWithinTheToleranceAreOneConstraint) {
-  std::mt19937 rng(7);
-  std::normal_distribution<double> jitter(0.0, 1e-13);
-  const Eigen::Vector3d d = Eigen::Vector3d::UnitZ();
-  const Eigen::Matrix3Xd base = random_normals_in_cap(rng, 6, -d, 50 * kDeg);
-  const int copies = 400;
-  Eigen::Matrix3Xd many(3, base.cols() * copies);
-  for (int c = 0; c < copies; ++c)
-    for (Eigen::Index i = 0; i < base.cols(); ++i) {
-      const Eigen::Vector3d shift(jitter(rng), jitter(rng), jitter(rng));
-      many.col(c * base.cols() + i) = c == 0 ? Eigen::Vector3d(base.col(i)) : Eigen::Vector3d((base.col(i) + shift).normalized());
-    }
-  for (double tau : kTaus) {
-    const MinRotation a = min_rotation(base, d, tau), b = min_rotation(many, d, tau);
-    EXPECT_EQ(a.feasible, b.feasible) << tau;
-    EXPECT_EQ(a.closest, b.closest) << tau;
-    EXPECT_EQ(a.angle, b.angle) << tau;
-  }
-}
-
 TEST(MinRotation, NearDuplicatePairMeetsOnItsBisector) {
   // Two risky faces mirrored through a plane containing d: every point of either circle nearest to
   // d lies inside the other cap, so the answer is where the two nearly equal circles cross. Below
