@@ -172,5 +172,7 @@ TEST(Overhang, AFaceExactlyOnTheThresholdIsSafe) {
   EXPECT_EQ(r.risky_count, 2);
   EXPECT_NEAR(r.risky_area, 100.0, 1e-9);
   for (Eigen::Index f = 0; f < r.quality.size(); ++f)
-    if (r.quality(f) == 0.0) EXPECT_FALSE(r.risky[static_cast<size_t>(f)]) << "face " << f;
+    if (r.quality(f) == 0.0) {
+      EXPECT_FALSE(r.risky[static_cast<size_t>(f)]) << "face " << f;
+    }
 }

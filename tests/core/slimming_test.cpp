@@ -173,7 +173,9 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
         ASSERT_GT(r.support_before_mm3, 0.0);
         EXPECT_NEAR(r.support_after_mm3, modelled_support(r.surface), 1e-9 * r.support_before_mm3);
         for (const IterationStats& st : r.history)
-          if (st.risky_area <= r.before.risky_area) EXPECT_GE(st.support_estimate, r.support_after_mm3) << st.iteration;
+          if (st.risky_area <= r.before.risky_area) {
+            EXPECT_GE(st.support_estimate, r.support_after_mm3) << st.iteration;
+          }
         EXPECT_LT(r.support_after_mm3, 0.98 * r.support_before_mm3);  // all four save support
       }
       EXPECT_EQ(r.history.back().inverted_tets, 0);
