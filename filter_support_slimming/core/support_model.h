@@ -62,9 +62,10 @@
 // Determinism: the phases run in parallel (OpenMP), each in a fixed order, and are summed in
 // phase order: the result does not depend on the thread count.
 //
-// Cost (bench/support_model_bench.cpp; docs/support-model.md): 7 ms of CPU for the 3,674-face
-// bunny at 60 mm (4 phases, 294 layers × 672 cells), 0.3 s for 940,544 faces; 1 MB and 79 MB of
-// memory. Linear in the faces (the raster) plus cells × layers × phases (the sweep).
+// Cost (bench/support_model_bench.cpp; docs/speed.md): 5.5 ms for the 3,674-face bunny at 60 mm
+// on one thread (4 phases, 294 layers × 672 cells), 0.22 s for 940,544 faces (0.17 s on two);
+// 1 MB and 32 MB of memory. Linear in the faces (the raster; for an open mesh also the slices and
+// pixels × layers) plus cells × layers × phases (the sweep).
 //
 // Errors: std::invalid_argument with a readable reason for a surface with no faces, bad indices,
 // non-finite coordinates, zero height, options out of range, or a part too large to sweep (over
