@@ -4,6 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
 
 namespace slim {
 
@@ -32,30 +35,47 @@ OverhangReport analyse_overhang(const CheckedSurface& checked, const OverhangOpt
   const Eigen::Vector3d d = unit_print_direction(options.print_direction);
   const double tau = self_supporting_tau(options.alpha_max_deg);
 
-  const Points n = face_normals(s);
-  const Eigen::VectorXd area = face_areas(s);
   const Eigen::VectorXd height = s.V * d;  // every vertex's height along d
 
   OverhangReport r;
   r.plate_height = height.minCoeff();
-  r.quality = n * d + Eigen::VectorXd::Constant(s.F.rows(), tau);
-  r.risky.assign(static_cast<size_t>(s.F.rows()), false);
-  r.on_plate.assign(static_cast<size_t>(s.F.rows()), false);
-  r.total_area = area.sum();
-  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
-    const auto fi = static_cast<size_t>(f);
+  // Each face on the threads, in one pass (its normal, area, quality as face_normals, face_areas
+  // and n · d + tau give them); then the sums in face order, as one pass makes them.
+  const auto faces = static_cast<int>(s.F.rows());
+  Eigen::VectorXd area(faces), shadow(faces);
+  std::vector<FaceSupport> support(static_cast<size_t>(faces));
+  r.quality.resize(faces);
+#pragma omp parallel for schedule(static) if (faces > 65536)
+  for (int f = 0; f < faces; ++f) {
+    const Eigen::Vector3d a = s.V.row(s.F(f, 0)).transpose(), b = s.V.row(s.F(f, 1)).transpose(),
+                          c = s.V.row(s.F(f, 2)).transpose();
+    const Eigen::Vector3d cross = (b - a).cross(c - a);
+    const double len = cross.norm();
+    // A face whose area underflows has no direction (face_normals: a zero normal).
+    const Eigen::Vector3d n = len > 0.0 && std::isfinite(len) ? Eigen::Vector3d(cross / len) : Eigen::Vector3d::Zero();
+    const double n_dot_d = n(0) * d(0) + n(1) * d(1) + n(2) * d(2);
+    area(f) = 0.5 * len;
+    r.quality(f) = n_dot_d + tau;
     const double h0 = height(s.F(f, 0)), h1 = height(s.F(f, 1)), h2 = height(s.F(f, 2));
-    const FaceSupport support = face_support(h0, h1, h2, r.plate_height, options.plate_tolerance, r.quality(f));
-    if (support == FaceSupport::Plate) {
+    support[static_cast<size_t>(f)] = face_support(h0, h1, h2, r.plate_height, options.plate_tolerance, r.quality(f));
+    if (support[static_cast<size_t>(f)] == FaceSupport::Risky)
+      shadow(f) = face_shadow(area(f), n_dot_d, (h0 + h1 + h2) / 3.0 - r.plate_height);
+  }
+  r.risky.assign(static_cast<size_t>(faces), false);
+  r.on_plate.assign(static_cast<size_t>(faces), false);
+  r.total_area = area.sum();
+  for (int f = 0; f < faces; ++f) {
+    const auto fi = static_cast<size_t>(f);
+    if (support[fi] == FaceSupport::Plate) {
       r.on_plate[fi] = true;
       r.quality(f) = 1.0;  // carried by the plate: reads as safe on the colour ramp
       ++r.plate_count;
-    } else if (support == FaceSupport::Risky) {
+    } else if (support[fi] == FaceSupport::Risky) {
       r.risky[fi] = true;
       ++r.risky_count;
       r.risky_area += area(f);
       r.risky_deficit -= area(f) * r.quality(f);
-      r.shadow_volume += face_shadow(area(f), n.row(f).dot(d), (h0 + h1 + h2) / 3.0 - r.plate_height);
+      r.shadow_volume += shadow(f);
     }
   }
   return r;

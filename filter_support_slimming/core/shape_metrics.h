@@ -73,6 +73,8 @@ ShapeChange shape_change(const Surface& input, const Surface& result, const Shap
 //                                           // interior_edges as shape_change() does
 //   meter.share_pct(result_V)               // crease_share_pct alone (%), the same value but
 //                                           // for an edge within rounding of the threshold
+//                                           // (it reuses the meter's buffers: one thread at a
+//                                           // time per meter)
 // Throws std::invalid_argument as shape_change() does (a bad threshold, a result of another size).
 class CreaseMeter {
  public:
@@ -89,6 +91,11 @@ class CreaseMeter {
   std::vector<DihedralEdge> edges_;  // the input's, with their angles
   std::vector<double> length_;       // the input's edge lengths (mm)
   std::vector<double> cos_in_, sin_in_;  // of the input's angles
+  double total_length_ = 0.0;            // of length_, summed in order
+  // share_pct's buffers, kept from call to call: one meter serves one thread at a time.
+  using RowPoints = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  mutable RowPoints positions_, cross_;
+  mutable std::vector<char> state_;
 };
 
 

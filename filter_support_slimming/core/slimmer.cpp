@@ -8,7 +8,6 @@
 
 #include "core/coherence.h"
 #include "core/step_guards.h"
-#include "core/volume_keeping.h"
 
 namespace slim {
 
@@ -108,6 +107,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
     for (const auto& pc : tet_pieces) piece_area_ += pc.second;  // AE is a share of this area
   plate_ = (mesh.V * d).minCoeff();
   volume_target_ = signed_volume(input_);
+  if (coherence_.keep_volume) volume_ = std::make_unique<VolumeKeeping>(domain_.embedding, input_.F, mesh.V.rows());
 }
 
 // Weights: the rest volumes (the paper), with the coherent factors and the features' weight;
@@ -151,10 +151,10 @@ IterationStats SupportSlimmer::step() {
   Points proposed;
   {
     ScopedSeconds timer(times_.global);
-    if (coherence_.keep_volume) {
+    if (volume_) {
       Points response;
-      proposed = arap_->solve_with_response(state_.L, domain_.mesh.V, volume_load(domain_.embedding, input_.F, V_), response);
-      keep_volume(domain_.embedding, input_.F, volume_target_, response, proposed);
+      proposed = arap_->solve_with_response(state_.L, domain_.mesh.V, volume_->load(V_), response);
+      volume_->keep(volume_target_, response, proposed);
     } else {
       proposed = arap_->solve(state_.L, domain_.mesh.V);
     }

@@ -42,6 +42,7 @@
 #include "core/overhang.h"
 #include "core/rigid_features.h"
 #include "core/slimming.h"
+#include "core/volume_keeping.h"
 
 namespace slim {
 
@@ -51,6 +52,10 @@ class SupportSlimmer {
                  const SlimmingOptions& options, const std::function<void(double, const std::string&)>& report);
 
   IterationStats step();
+
+  // Its parts hold references to its own members (the volume keeping reads the domain's embedding).
+  SupportSlimmer(const SupportSlimmer&) = delete;
+  SupportSlimmer& operator=(const SupportSlimmer&) = delete;
 
   const Points& surface_positions() const { return current_.V; }
   const OverhangReport& overhang() const { return overhang_; }
@@ -76,6 +81,7 @@ class SupportSlimmer {
   std::unique_ptr<RigidFeatures> features_;
   Eigen::VectorXd weights_;
   std::unique_ptr<ArapSolver> arap_;
+  std::unique_ptr<VolumeKeeping> volume_;  // when the coherent options keep the volume
   std::vector<std::vector<int>> neighbours_;
   Points V_;             // the current domain positions
   Surface current_;      // the current surface: its positions, the input's faces

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -69,6 +70,25 @@ std::vector<std::pair<int, int>> phase_offsets(int per_cell, int phases) {
   return out;
 }
 
+// Whether the enclosed volume is negative: signed_volume()'s sum in blocks on the threads (every
+// estimate asks; only the sign is read, which no order of the sum changes but for a part of no
+// volume).
+bool inside_out(const Surface& s) {
+  const Eigen::RowVector3d centre = s.V.colwise().mean();
+  const Eigen::Index faces = s.F.rows(), block = 1 << 16;
+  std::vector<double> part(static_cast<size_t>((faces + block - 1) / block), 0.0);
+  parallel_for(static_cast<int>(part.size()), [&](int b) {
+    for (Eigen::Index f = b * block; f < std::min(faces, (b + 1) * block); ++f) {
+      const Eigen::Vector3d a = (s.V.row(s.F(f, 0)) - centre).transpose(), p = (s.V.row(s.F(f, 1)) - centre).transpose(),
+                            c = (s.V.row(s.F(f, 2)) - centre).transpose();
+      part[static_cast<size_t>(b)] += a.dot(p.cross(c));
+    }
+  });
+  double volume = 0.0;
+  for (double v : part) volume += v;
+  return volume < 0.0;
+}
+
 // The part in the print frame, turned about +Z, resting on z = 0; its faces turned over when the
 // enclosed volume is negative (an inside-out part).
 Surface print_frame(const Points& V, const Triangles& F, const SupportModelOptions& o, double turn) {
@@ -77,7 +97,7 @@ Surface print_frame(const Points& V, const Triangles& F, const SupportModelOptio
   Surface out{V * r.transpose(), F};
   const double plate = out.V.col(2).minCoeff();
   out.V.col(2).array() -= plate;
-  if (signed_volume(out) < 0) out = flipped(out);
+  if (inside_out(out)) out = flipped(out);
   return out;
 }
 

@@ -303,6 +303,7 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
 void mark_creases(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule, const LayerVoxels& voxels,
                   Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) {
   const double cos_max_slope = std::cos(rule.max_slope_deg * M_PI / 180.0);
+  const double cos2_max_slope = cos_max_slope * cos_max_slope;
   const double reach_overhang = 1.0 / std::tan(rule.max_slope_deg * M_PI / 180.0);
   const double reach_dense = 1.0 / std::tan(rule.dense_slope_deg * M_PI / 180.0);
   auto vertex = [&](int v) -> Vec3 { return s.V.row(v).transpose(); };
@@ -310,9 +311,12 @@ void mark_creases(const Surface& s, const FaceAdjacency& adj, const OverhangRule
     for (int k = 0; k < 3; ++k) {
       const int u = s.F(f, k), v = s.F(f, (k + 1) % 3), w = s.F(f, (k + 2) % 3);
       const Vec3 a = vertex(u), b = vertex(v), c = vertex(w), e = b - a;
-      const double len = e.norm();
       // The edge less steep than the threshold (cos of its slope = |e.xy| / |e| > cos(max slope)),
-      // and this face rising away from it.
+      // and this face rising away from it. Squares first: most edges are far steeper, and the
+      // square roots and the division below decide only the rest, as they always did.
+      const double level2 = e.head<2>().squaredNorm();
+      if (level2 < 0.98 * cos2_max_slope * e.squaredNorm()) continue;
+      const double len = e.norm();
       if (!(len > 0) || !(e.head<2>().norm() / len > cos_max_slope) || !rises_from(a, b, c)) continue;
       // Once per edge (from its lower face index), manifold, the other face rising too, and convex:
       // the other face's third vertex behind this face's plane.
@@ -331,11 +335,13 @@ void mark_tips(const Surface& s, const FaceAdjacency& adj, const LayerVoxels& vo
                Eigen::Index end, std::vector<PixelOverhang>& out) {
   for (int v = static_cast<int>(first); v < end; ++v) {
     if (adj.faces_end(v) - adj.faces_begin(v) < 3) continue;
-    double lowest = INFINITY;
-    for (const int* f = adj.faces_begin(v); f != adj.faces_end(v); ++f)
+    // Below every neighbour; most vertices have one no higher among their first face's.
+    const double z = s.V(v, 2);
+    bool lowest = true;
+    for (const int* f = adj.faces_begin(v); f != adj.faces_end(v) && lowest; ++f)
       for (int u : adj.face(*f))
-        if (u != v) lowest = std::min(lowest, s.V(u, 2));
-    if (!(s.V(v, 2) < lowest)) continue;
+        if (u != v && !(z < s.V(u, 2))) lowest = false;
+    if (!lowest) continue;
     const Vec3 p = s.V.row(v);
     mark_feature(voxels, p, p, p, true, out);
   }

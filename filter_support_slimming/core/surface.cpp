@@ -39,6 +39,7 @@ Points face_normals(const Points& V, const Triangles& F) {
 
 Eigen::VectorXd face_areas(const Surface& s) {
   Eigen::VectorXd a(s.F.rows());
+#pragma omp parallel for schedule(static) if (s.F.rows() > 65536)
   for (Eigen::Index f = 0; f < s.F.rows(); ++f) a(f) = 0.5 * face_cross(s, f).norm();
   return a;
 }

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 
+#include "core/parallel_for.h"
 #include "core/shape_metrics.h"
 #include "support/shapes.h"
 
@@ -184,5 +186,31 @@ TEST(ShapeMetrics, OneCreaseMeterMeasuresManyResultsAsTheyAre) {
   ShapeChange c;
   meter.measure(squashed.V, c);
   EXPECT_LT(c.interior_edges, 2 * n * (n - 1) + n * n);
+  EXPECT_NEAR(meter.share_pct(squashed.V), c.crease_share_pct, 1e-12);
   EXPECT_THROW(meter.measure(sheet(n + 1).V, c), std::invalid_argument);
+}
+
+// share_pct runs its faces and edges on the threads: on a ball large enough for them (122,880
+// edges), bent at random, it gives measure()'s share on one thread and on two, the same bits on
+// both, call after call with one meter (its buffers reused).
+TEST(ShapeMetrics, TheShareOfALargeSurfaceIsTheSameOnAnyThreadCount) {
+  const Surface ball = test::icosphere(6);
+  const CreaseMeter meter(ball);
+  for (unsigned seed : {1u, 2u}) {
+    Surface bent = ball;
+    std::srand(seed);
+    bent.V += 0.05 * Points::Random(ball.V.rows(), 3);
+    ShapeChange c;
+    meter.measure(bent.V, c);
+    ASSERT_GT(c.crease_share_pct, 1.0) << seed;
+    ASSERT_LT(c.crease_share_pct, 99.0) << seed;
+    std::vector<double> shares;
+    for (int threads : {1, 2, 1}) {
+      const ThreadScope scope(threads);
+      shares.push_back(meter.share_pct(bent.V));
+    }
+    EXPECT_NEAR(shares[0], c.crease_share_pct, 1e-9) << seed;
+    EXPECT_EQ(shares[0], shares[1]) << seed;
+    EXPECT_EQ(shares[0], shares[2]) << seed;
+  }
 }

@@ -11,6 +11,7 @@
 #include "core/arap.h"
 #include "core/checked_surface.h"
 #include "core/embedded_domain.h"
+#include "core/parallel_for.h"
 #include "core/volume_keeping.h"
 #include "support/shapes.h"
 
@@ -89,4 +90,52 @@ TEST(VolumeKeeping, NoResponseLeavesThePositionsAlone) {
   const Points before = V;
   EXPECT_EQ(keep_volume(domain.embedding, ball.F, signed_volume(ball), Points::Zero(V.rows(), 3), V), 0.0);
   EXPECT_TRUE(V == before);
+}
+
+// The load gathers each surface vertex's corners on the threads in the order one pass over the
+// faces scatters them, and the cubic adds its faces' terms in face order: on a surface large
+// enough for the threads (81,920 faces), the load is the face-by-face pass's (and the volume's
+// gradient, by central differences), and lambda and the moved positions are the same on one
+// thread and on two.
+TEST(VolumeKeeping, ALargeSurfaceGivesTheOnePassLoadAndTheSameLambdaOnAnyThreadCount) {
+  const Surface ball = test::icosphere(6);
+  SlimmingOptions o;
+  o.resolution = 10;
+  const EmbeddedDomain domain =
+      embedded_domain(CheckedSurface(ball), Eigen::Vector3d::UnitZ(), o, [](double, const std::string&) {});
+  const Points V = domain.mesh.V + 0.3 * Points::Random(domain.mesh.V.rows(), 3);
+  Points S;
+  embedded_positions(domain.embedding, V, S);
+  const Points reference = embedded_volume_gradient(domain.embedding, ball.F, S, V.rows());
+  const Points u = Points::Random(V.rows(), 3);
+  std::vector<double> lambdas;
+  std::vector<Points> kept;
+  for (int threads : {1, 2}) {
+    const ThreadScope scope(threads);
+    VolumeKeeping volume(domain.embedding, ball.F, V.rows());
+    EXPECT_TRUE(volume.load(V) == reference) << threads;
+    Points moved = V;
+    lambdas.push_back(volume.keep(signed_volume(ball), u, moved));
+    kept.push_back(moved);
+  }
+  EXPECT_EQ(lambdas[0], lambdas[1]);
+  EXPECT_TRUE(kept[0] == kept[1]);
+  EXPECT_NEAR(embedded_volume(domain.embedding, ball.F, kept[0]), signed_volume(ball), 1e-9 * signed_volume(ball));
+  const double h = 1e-4;
+  for (Eigen::Index v : {Eigen::Index(0), V.rows() / 2, V.rows() - 1})
+    for (int k = 0; k < 3; ++k) {
+      Points up = V, down = V;
+      up(v, k) += h;
+      down(v, k) -= h;
+      const double slope = (embedded_volume(domain.embedding, ball.F, up) - embedded_volume(domain.embedding, ball.F, down)) / (2 * h);
+      EXPECT_NEAR(reference(v, k), slope, 1e-6 * (1.0 + std::abs(slope))) << v << " " << k;
+    }
+}
+
+TEST(VolumeKeeping, FacesOutsideTheEmbeddingAreRefused) {
+  const BallInDomain fixture(8);
+  Triangles bad = fixture.ball.F;
+  bad(0, 0) = static_cast<int>(fixture.ball.V.rows());
+  EXPECT_THROW(VolumeKeeping(fixture.domain.embedding, bad, fixture.domain.mesh.V.rows()), std::invalid_argument);
+  EXPECT_THROW(VolumeKeeping(fixture.domain.embedding, fixture.ball.F, 3), std::invalid_argument);
 }
