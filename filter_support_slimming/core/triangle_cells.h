@@ -64,8 +64,15 @@ void cells_overlapping_triangle(const VoxelGrid& grid, const Eigen::Vector3d& a,
   detail::cell_range(lower(0), upper(0), tolerance, grid.cells(0), i0, i1);
   detail::cell_range(lower(1), upper(1), tolerance, grid.cells(1), j0, j1);
   detail::cell_range(lower(2), upper(2), tolerance, grid.cells(2), k0, k1);
-  if (i0 == i1 && j0 == j1 && k0 == k1) {  // a small triangle inside one cell: the common case
+  if (i0 == i1 && j0 == j1 && k0 == k1) {  // a small triangle inside one cell
     visit(i0, j0, k0);
+    return;
+  }
+  if (i0 == i1 && j0 == j1 && lower(0) - (i0 - tolerance) >= 0 && (i0 + 1 + tolerance) - upper(0) >= 0 &&
+      lower(1) - (j0 - tolerance) >= 0 && (j0 + 1 + tolerance) - upper(1) >= 0) {
+    // A small triangle inside one column (the common case on a fine mesh): the slabs' clips
+    // would keep it whole, so its cells are those of its own extent along d.
+    for (int k = k0; k <= k1; ++k) visit(i0, j0, k);
     return;
   }
   detail::SlabPolygon tri, row, column;
