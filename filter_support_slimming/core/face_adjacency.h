@@ -33,6 +33,7 @@ class FaceAdjacency {
     int face = -1, opposite = -1;
   };
   Twin across(int f, int k) const;
+  bool has_every_twin() const { return !twins_.empty(); }  // across() is a lookup
 
   const int* faces_begin(int v) const { return vertex_face_.data() + vertex_begin_[v]; }
   const int* faces_end(int v) const { return vertex_face_.data() + vertex_begin_[v + 1]; }

@@ -263,7 +263,7 @@ void choose_best(const OrientationGeometry& g, const OrientationOptions& o, cons
 void judge_by_support(const Surface& oriented, const OrientationOptions& o, OrientationResult& result) {
   const size_t judged = std::min(result.top.size(), static_cast<size_t>(std::max(0, o.support_model_candidates)));
   if (judged == 0) return;
-  const SupportModel model(oriented.F, oriented.V.rows());  // one mesh in every pose
+  SupportModel model(oriented.F, oriented.V.rows());  // one mesh in every pose
   auto estimate = [&](OrientationCandidate& c) {
     SupportModelOptions m;
     m.print_direction = c.direction;

@@ -13,8 +13,8 @@
 // overhang's footprint, so cutting risky area can save nothing: the support decides.)
 // An iterate whose crease share exceeds max_crease_share_pct (when > 0) never qualifies either.
 // In: the input's statistics (iteration 0) and the crease limit (%), then each iterate's
-// (risky_area mm², support_estimate or shadow_volume mm³, crease_share_pct). Out: offer() is true
-// when the iterate is the best so far.
+// (risky_area mm², support_estimate or shadow_volume mm³, crease_share_pct, which only the
+// iterates reads_creases() names need). Out: offer() is true when the iterate is the best so far.
 #pragma once
 
 #include <cmath>
@@ -40,6 +40,10 @@ class IterateChoice {
     best_risky_ = s.risky_area;
     return true;
   }
+
+  // Whether offer() reads the iterate's crease share: only an iterate that needs no more support
+  // than the best so far can be chosen or passed over (the share costs a pass over every edge).
+  bool reads_creases(const IterationStats& s) const { return max_crease_ > 0.0 && !(support(s) > best_support_); }
 
   // Iterates that needed less support than the best so far but creased past the limit.
   int passed_over() const { return passed_over_; }

@@ -97,7 +97,7 @@ std::string embed_and_write_back(const Surface& input, const EmbeddedDomain& dom
 struct Support {
   double mean = 0.0, slicer_phase = 0.0;
 };
-Support support_estimate(const SupportModel* model, const Points& V, const SlimmingOptions& o, double unmeasurable) {
+Support support_estimate(SupportModel* model, const Points& V, const SlimmingOptions& o, double unmeasurable) {
   if (!model) return {};
   SupportModelOptions m;
   m.print_direction = o.print_direction;
@@ -121,7 +121,7 @@ std::string crease_note(const IterateChoice& choice, double limit) {
 }
 
 // The iterations under the stopping rule; the best iterate goes into r.
-std::string iterate(SupportSlimmer& slimmer, const Surface& input, const SupportModel* model, const SlimmingOptions& o,
+std::string iterate(SupportSlimmer& slimmer, const Surface& input, SupportModel* model, const SlimmingOptions& o,
                     const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
   const double max_crease = coherence_of(o).max_crease_share_pct;
   IterateChoice choice(r.history.front(), max_crease);
@@ -132,17 +132,19 @@ std::string iterate(SupportSlimmer& slimmer, const Surface& input, const Support
     r.iterations_run = it;
     IterationStats st = slimmer.step();
     st.iteration = it;
-    if (creases) {
-      crease_started = std::chrono::steady_clock::now();
-      st.crease_share_pct = creases->share_pct(slimmer.surface_positions());
-      r.stage_seconds.creases += seconds_since(crease_started);
-    }
     if (r.support_before_mm3 > 0.0) {
       const auto started = std::chrono::steady_clock::now();
       const Support support = support_estimate(model, slimmer.surface_positions(), o, std::nan(""));
       st.support_estimate = support.mean;
       st.support_slicer_phase = support.slicer_phase;
       r.stage_seconds.support_model += seconds_since(started);
+    }
+    if (creases && choice.reads_creases(st)) {
+      crease_started = std::chrono::steady_clock::now();
+      st.crease_share_pct = creases->share_pct(slimmer.surface_positions());
+      r.stage_seconds.creases += seconds_since(crease_started);
+    } else if (creases) {
+      st.crease_share_pct = std::nan("");  // needs more support than the best: never chosen
     }
     r.history.push_back(st);
     const double previous_deficit = r.history[r.history.size() - 2].risky_deficit;
@@ -181,9 +183,9 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
   };
   SlimmingResult r = unchanged(input, analyse_overhang(checked, measure));
   // The model's topology is the input's for every iterate: its adjacency is found once.
-  const std::optional<SupportModel> model =
+  std::optional<SupportModel> model =
       coherence_of(o).choose_by_support_model ? std::make_optional<SupportModel>(input.F, input.V.rows()) : std::nullopt;
-  const SupportModel* judge = model ? &*model : nullptr;
+  SupportModel* judge = model ? &*model : nullptr;
   const Support given = support_estimate(judge, input.V, o, 0.0);
   r.support_before_mm3 = r.support_after_mm3 = r.history[0].support_estimate = given.mean;
   r.support_slicer_phase_before_mm3 = r.support_slicer_phase_after_mm3 = r.history[0].support_slicer_phase = given.slicer_phase;

@@ -177,7 +177,8 @@ struct IterationStats {
   // phase_mm3[0]); 0 when not measured.
   double support_slicer_phase = 0.0;
   // % of the interior edge length creased against the input (shape_metrics.h); 0 when the run
-  // does not measure it (CoherenceOptions::max_crease_share_pct off).
+  // does not measure it (CoherenceOptions::max_crease_share_pct off), NaN for an iterate that
+  // needed more support than the best before it (it cannot be chosen: not measured).
   double crease_share_pct = 0.0;
   double energy = 0.0;             // ARAP energy of the accepted positions for this iteration's L_t
   // The global step alone: ARAP energy for this iteration's L_t at the positions it started from,
@@ -205,7 +206,7 @@ struct SlimmingStageSeconds {  // wall time per stage, summed over iterations
   double global = 0.0;          // right-hand sides and back-substitutions
   double measure = 0.0;         // the step guards, write-back to the surface and the statistics
   double support_model = 0.0;   // the support model's estimate of every iterate (choose_by_support_model)
-  double creases = 0.0;         // the crease share of every iterate (max_crease_share_pct)
+  double creases = 0.0;         // the crease share of the iterates that may be chosen (max_crease_share_pct)
 };
 
 struct SlimmingResult {

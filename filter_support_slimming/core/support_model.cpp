@@ -70,17 +70,17 @@ std::vector<std::pair<int, int>> phase_offsets(int per_cell, int phases) {
   return out;
 }
 
-// Whether the enclosed volume is negative: signed_volume()'s sum in blocks on the threads (every
-// estimate asks; only the sign is read, which no order of the sum changes but for a part of no
-// volume).
-bool inside_out(const Surface& s) {
-  const Eigen::RowVector3d centre = s.V.colwise().mean();
-  const Eigen::Index faces = s.F.rows(), block = 1 << 16;
+// Whether the enclosed volume of positions V with faces F is negative: signed_volume()'s sum in
+// blocks on the threads (every estimate asks; only the sign is read, which no order of the sum
+// changes but for a part of no volume).
+bool inside_out(const Points& V, const Triangles& F) {
+  const Eigen::RowVector3d centre = V.colwise().mean();
+  const Eigen::Index faces = F.rows(), block = 1 << 16;
   std::vector<double> part(static_cast<size_t>((faces + block - 1) / block), 0.0);
   parallel_for(static_cast<int>(part.size()), [&](int b) {
     for (Eigen::Index f = b * block; f < std::min(faces, (b + 1) * block); ++f) {
-      const Eigen::Vector3d a = (s.V.row(s.F(f, 0)) - centre).transpose(), p = (s.V.row(s.F(f, 1)) - centre).transpose(),
-                            c = (s.V.row(s.F(f, 2)) - centre).transpose();
+      const Eigen::Vector3d a = (V.row(F(f, 0)) - centre).transpose(), p = (V.row(F(f, 1)) - centre).transpose(),
+                            c = (V.row(F(f, 2)) - centre).transpose();
       part[static_cast<size_t>(b)] += a.dot(p.cross(c));
     }
   });
@@ -89,16 +89,29 @@ bool inside_out(const Surface& s) {
   return volume < 0.0;
 }
 
-// The part in the print frame, turned about +Z, resting on z = 0; its faces turned over when the
-// enclosed volume is negative (an inside-out part).
-Surface print_frame(const Points& V, const Triangles& F, const SupportModelOptions& o, double turn) {
+// The part in the print frame, kept from estimate to estimate: a fresh copy of the positions and
+// the faces costs a page fault every 4 kB (at 1.1M faces a fifth of an estimate).
+struct PrintFrame {
+  Surface part;         // its faces: the estimate's, or those turned over (turned)
+  bool turned = false;
+};
+
+// Positions V (faces F) into `frame`: turned about +Z, resting on z = 0; the faces turned over
+// when the enclosed volume is negative (an inside-out part).
+void print_frame(const Points& V, const Triangles& F, const SupportModelOptions& o, double turn, PrintFrame& frame) {
   const Eigen::Matrix3d r = Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
                             rotation_to_up(o.print_direction.normalized());
-  Surface out{V * r.transpose(), F};
-  const double plate = out.V.col(2).minCoeff();
-  out.V.col(2).array() -= plate;
-  if (inside_out(out)) out = flipped(out);
-  return out;
+  frame.part.V.resize(V.rows(), 3);
+  frame.part.V.noalias() = V * r.transpose();
+  const double plate = frame.part.V.col(2).minCoeff();
+  frame.part.V.col(2).array() -= plate;
+  if (frame.part.F.rows() != F.rows()) {
+    frame.part.F = F;
+    frame.turned = false;
+  }
+  const bool turn_over = inside_out(frame.part.V, F);
+  if (turn_over != frame.turned) frame.part.F.col(1).swap(frame.part.F.col(2));
+  frame.turned = turn_over;
 }
 
 constexpr double kMaxLayers = 50000.0, kMaxCellLayers = 1e9;
@@ -135,7 +148,7 @@ bool has_open_edges(const Triangles& faces, Eigen::Index vertices) {
 
 // The estimate of a surface whose options and faces the caller has checked (check_input).
 SupportEstimate estimate_with(const Points& V, const Triangles& F, const FaceAdjacency& adjacency, bool open,
-                              const SupportModelOptions& o) {
+                              const SupportModelOptions& o, PrintFrame& print) {
   const auto offsets = phase_offsets(o.pixels_per_cell, o.grid_phases);
   const GridSweepSettings settings = sweep_settings(o);
   OverhangRule rule;
@@ -151,7 +164,8 @@ SupportEstimate estimate_with(const Points& V, const Triangles& F, const FaceAdj
   SupportEstimate est;
   std::vector<GridSweepResult> runs;
   for (int t = 0; t < o.turns; ++t) {
-    const Surface frame = print_frame(V, F, o, M_PI * t / o.turns);
+    print_frame(V, F, o, M_PI * t / o.turns, print);
+    const Surface& frame = print.part;
     const double height = frame.V.col(2).maxCoeff();
     require(height > 0, "the part has no height along the print direction");
     SlicerLayers layers;
@@ -203,6 +217,7 @@ struct SupportModel::Impl {
   Eigen::Index vertices;
   FaceAdjacency adjacency;
   bool open;
+  PrintFrame frame;  // estimate()'s buffers
   Impl(const Triangles& faces, Eigen::Index n)
       : F(checked_faces(faces, n)), vertices(n), adjacency(faces, n, true), open(has_open_edges(faces, n)) {}
   // The faces' indices checked before the adjacency reads them (positions come later).
@@ -217,16 +232,17 @@ SupportModel::SupportModel(const Triangles& faces, Eigen::Index vertices)
 SupportModel::~SupportModel() = default;
 SupportModel::SupportModel(SupportModel&&) noexcept = default;
 
-SupportEstimate SupportModel::estimate(const Points& V, const SupportModelOptions& o) const {
+SupportEstimate SupportModel::estimate(const Points& V, const SupportModelOptions& o) {
   require(V.rows() == impl_->vertices, "the positions have " + std::to_string(V.rows()) + " rows for a mesh of " +
                                            std::to_string(impl_->vertices) + " vertices");
   check_input(V, impl_->F, o, true);
-  return estimate_with(V, impl_->F, impl_->adjacency, impl_->open, o);
+  return estimate_with(V, impl_->F, impl_->adjacency, impl_->open, o, impl_->frame);
 }
 
 SupportEstimate estimate_support(const Surface& surface, const SupportModelOptions& o) {
   check_input(surface.V, surface.F, o, false);
-  return estimate_with(surface.V, surface.F, FaceAdjacency(surface), has_open_edges(surface.F, surface.V.rows()), o);
+  PrintFrame frame;
+  return estimate_with(surface.V, surface.F, FaceAdjacency(surface), has_open_edges(surface.F, surface.V.rows()), o, frame);
 }
 
 }  // namespace slim

@@ -148,13 +148,14 @@ SupportEstimate estimate_support(const Surface& surface, const SupportModelOptio
 //   model.estimate(V, options)   // V: #V by 3 (mm); the same figures, bit for bit, as
 //                                // estimate_support(Surface{V, faces}, options)
 // The constructor checks the faces' indices, estimate() the positions (check_surface): both throw
-// std::invalid_argument, as estimate_support does.
+// std::invalid_argument, as estimate_support does. estimate() reuses the model's buffers (the part
+// in the print frame): one call at a time.
 class SupportModel {
  public:
   SupportModel(const Triangles& faces, Eigen::Index vertices);
   ~SupportModel();
   SupportModel(SupportModel&&) noexcept;
-  SupportEstimate estimate(const Points& V, const SupportModelOptions& options = {}) const;
+  SupportEstimate estimate(const Points& V, const SupportModelOptions& options = {});
 
  private:
   struct Impl;

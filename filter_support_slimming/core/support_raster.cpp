@@ -307,8 +307,12 @@ void mark_creases(const Surface& s, const FaceAdjacency& adj, const OverhangRule
   const double reach_overhang = 1.0 / std::tan(rule.max_slope_deg * M_PI / 180.0);
   const double reach_dense = 1.0 / std::tan(rule.dense_slope_deg * M_PI / 180.0);
   auto vertex = [&](int v) -> Vec3 { return s.V.row(v).transpose(); };
+  // Each edge once, from its lower face index: asked first when the twins are a lookup (half the
+  // edges then need no position at all), else after the cheaper tests.
+  const bool twins_first = adj.has_every_twin();
   for (int f = static_cast<int>(first); f < end; ++f) {
     for (int k = 0; k < 3; ++k) {
+      if (twins_first && adj.across(f, k).face < f) continue;
       const int u = s.F(f, k), v = s.F(f, (k + 1) % 3), w = s.F(f, (k + 2) % 3);
       const Vec3 a = vertex(u), b = vertex(v), c = vertex(w), e = b - a;
       // The edge less steep than the threshold (cos of its slope = |e.xy| / |e| > cos(max slope)),
@@ -318,8 +322,8 @@ void mark_creases(const Surface& s, const FaceAdjacency& adj, const OverhangRule
       if (level2 < 0.98 * cos2_max_slope * e.squaredNorm()) continue;
       const double len = e.norm();
       if (!(len > 0) || !(e.head<2>().norm() / len > cos_max_slope) || !rises_from(a, b, c)) continue;
-      // Once per edge (from its lower face index), manifold, the other face rising too, and convex:
-      // the other face's third vertex behind this face's plane.
+      // Once per edge, manifold, the other face rising too, and convex: the other face's third
+      // vertex behind this face's plane.
       const FaceAdjacency::Twin twin = adj.across(f, k);
       if (twin.face < f) continue;
       const int x = twin.opposite;

@@ -42,7 +42,9 @@ TEST(LocalStep, PiecesWithOneNormalAreOneConstraintCarryingTheirArea) {
       kept_area += mine[i].second;
       for (size_t j = 0; j < i; ++j)  // the kept normals are apart, in the order of their faces
         EXPECT_GT((n.row(mine[i].first) - n.row(mine[j].first)).norm(), kMinRotationFeasibilityTolerance) << t;
-      if (i > 0) EXPECT_LT(mine[i - 1].first, mine[i].first) << t;
+      if (i > 0) {
+        EXPECT_LT(mine[i - 1].first, mine[i].first) << t;
+      }
     }
     EXPECT_NEAR(kept_area, area, 1e-12 * (1.0 + area)) << t;
     merged += (e.tet_face_offsets(t + 1) - e.tet_face_offsets(t)) - static_cast<Eigen::Index>(mine.size());

@@ -299,7 +299,7 @@ TEST(SupportModel, OneModelOfAMeshGivesEstimateSupportsBitsInEveryPose) {
   const Surface m = test::refined(test::mushroom(), 2), open = test::box_with_windows(5.0);
   ASSERT_GT(m.F.rows(), 4096);
   for (const Surface* mesh : {&m, &open}) {
-    const SupportModel model(mesh->F, mesh->V.rows());
+    SupportModel model(mesh->F, mesh->V.rows());
     for (const Vector3d& d : {Vector3d(0, 0, 1), Vector3d(0.3, -0.2, 1), Vector3d(1, 0, 0.2)})
       for (int threads : {1, 2}) {
         SupportModelOptions o;
@@ -313,7 +313,16 @@ TEST(SupportModel, OneModelOfAMeshGivesEstimateSupportsBitsInEveryPose) {
         EXPECT_EQ(a.layer_mm3, b.layer_mm3);
       }
   }
-  const SupportModel model(m.F, m.V.rows());
+  // The model keeps the part in the print frame from call to call: a mirrored pose (inside out,
+  // its faces turned over) between two others leaves nothing behind.
+  SupportModel model(m.F, m.V.rows());
+  const Surface mirrored = test::transformed(m, Eigen::Vector3d(-1, 1, 1).asDiagonal(), Vector3d::Zero());
+  for (const Surface* pose : {&m, &mirrored, &m, &mirrored}) {
+    const SupportEstimate a = model.estimate(pose->V), b = estimate_support(*pose);
+    EXPECT_GT(a.volume_mm3, 0.0);
+    EXPECT_EQ(a.volume_mm3, b.volume_mm3);
+    EXPECT_EQ(a.phase_mm3, b.phase_mm3);
+  }
   Triangles bad = m.F;
   bad(3, 1) = static_cast<int>(m.V.rows());
   EXPECT_THROW(SupportModel(bad, m.V.rows()), std::invalid_argument);
