@@ -4,7 +4,8 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
-#include <tuple>
+#include <utility>
+#include <vector>
 
 namespace slim {
 namespace {
@@ -22,23 +23,23 @@ Eigen::Vector3d closest_on_segment(const Eigen::Vector3d& p, const Eigen::Vector
 OverhangBoundary::OverhangBoundary(const Surface& s, const std::vector<bool>& region) {
   if (region.size() != static_cast<size_t>(s.F.rows()))
     throw std::invalid_argument("OverhangBoundary: one region flag per face is needed");
-  // Every face's edges as (lower vertex, higher vertex, in the region); an edge bounds the region
-  // when exactly one of the faces along it is in the region.
-  std::vector<std::tuple<int, int, bool>> edges;
-  edges.reserve(static_cast<size_t>(3 * s.F.rows()));
-  for (Eigen::Index f = 0; f < s.F.rows(); ++f)
+  // The region's faces' edges as (lower vertex, higher vertex): an edge bounds the region when
+  // exactly one face of the region runs along it (faces outside it do not count, so only the
+  // region's own edges are listed and sorted).
+  std::vector<std::pair<int, int>> edges;
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
+    if (!region[static_cast<size_t>(f)]) continue;
     for (int k = 0; k < 3; ++k) {
       const int u = s.F(f, k), v = s.F(f, (k + 1) % 3);
-      edges.emplace_back(std::min(u, v), std::max(u, v), region[static_cast<size_t>(f)]);
+      edges.emplace_back(std::min(u, v), std::max(u, v));
     }
+  }
   std::sort(edges.begin(), edges.end());
   std::vector<std::pair<int, int>> boundary;
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
-    int region_uses = 0;
-    for (; j < edges.size() && std::get<0>(edges[j]) == std::get<0>(edges[i]) && std::get<1>(edges[j]) == std::get<1>(edges[i]); ++j)
-      region_uses += std::get<2>(edges[j]);
-    if (region_uses == 1) boundary.emplace_back(std::get<0>(edges[i]), std::get<1>(edges[i]));
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) boundary.push_back(edges[i]);
     i = j;
   }
   a_.resize(static_cast<Eigen::Index>(boundary.size()), 3);

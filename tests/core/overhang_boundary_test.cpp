@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "core/overhang.h"
 #include "core/overhang_boundary.h"
@@ -145,6 +148,36 @@ TEST(OverhangBoundary, ExtremeCoordinatesStayDefined) {
     EXPECT_TRUE(w.allFinite()) << scale;
     if (scale == 1e-3 || scale == 1e6) {
       EXPECT_LT((w - Eigen::Vector3d(0, 1, 0)).norm(), 1e-9) << scale;
+    }
+  }
+}
+
+// The boundary is every edge along which exactly one face of the region runs, in the order of
+// (lower vertex, higher vertex): against a count over every face of the mesh, for random regions of
+// a closed ball and of an open half ball (whose rim edges have one face only).
+TEST(OverhangBoundary, TheSegmentsAreTheEdgesOneRegionFaceRunsAlong) {
+  std::mt19937 gen(7);
+  for (const Surface& s : {test::icosphere(3), test::open_hemisphere(3)}) {
+    for (double share : {0.1, 0.5, 0.9}) {
+      std::bernoulli_distribution in(share);
+      std::vector<bool> region(static_cast<size_t>(s.F.rows()));
+      for (size_t f = 0; f < region.size(); ++f) region[f] = in(gen);
+      std::map<std::pair<int, int>, int> uses;
+      for (Eigen::Index f = 0; f < s.F.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+          const int u = s.F(f, k), v = s.F(f, (k + 1) % 3);
+          uses[{std::min(u, v), std::max(u, v)}] += region[static_cast<size_t>(f)] ? 1 : 0;
+        }
+      std::vector<std::pair<int, int>> expected;
+      for (const auto& [edge, count] : uses)
+        if (count == 1) expected.push_back(edge);
+      const OverhangBoundary boundary(s, region);
+      ASSERT_EQ(boundary.segment_count(), static_cast<Eigen::Index>(expected.size())) << share;
+      ASSERT_GT(expected.size(), 0u);
+      for (size_t i = 0; i < expected.size(); ++i) {
+        EXPECT_EQ(boundary.segment_start(static_cast<Eigen::Index>(i)), s.V.row(expected[i].first).transpose()) << i;
+        EXPECT_EQ(boundary.segment_end(static_cast<Eigen::Index>(i)), s.V.row(expected[i].second).transpose()) << i;
+      }
     }
   }
 }
