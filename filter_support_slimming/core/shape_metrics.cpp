@@ -107,11 +107,20 @@ void require_same_vertex_count(Eigen::Index input, Eigen::Index result) {
 std::vector<DihedralEdge> dihedral_edges(const Surface& s) {
   check_surface(s);
   const Points n = face_normals(s);
-  std::vector<DihedralEdge> out;
-  for (const EdgePair& e : interior_manifold_edges(s.F)) {
-    if (!has_area(n, e.f0) || !has_area(n, e.f1)) continue;
-    out.push_back({e.v0, e.v1, e.f0, e.f1, edge_angle(s, n, e)});
+  const std::vector<EdgePair> pairs = interior_manifold_edges(s.F);
+  // The angles on the threads (an atan2 each), the edges without area dropped after, in order.
+  std::vector<DihedralEdge> all(pairs.size());
+  const auto count = static_cast<long>(pairs.size());
+#pragma omp parallel for schedule(static) if (count > 65536)
+  for (long i = 0; i < count; ++i) {
+    const EdgePair& e = pairs[static_cast<size_t>(i)];
+    const bool area = has_area(n, e.f0) && has_area(n, e.f1);
+    all[static_cast<size_t>(i)] = {e.v0, e.v1, area ? e.f0 : -1, e.f1, area ? edge_angle(s, n, e) : 0.0};
   }
+  std::vector<DihedralEdge> out;
+  out.reserve(all.size());
+  for (const DihedralEdge& e : all)
+    if (e.f0 >= 0) out.push_back(e);
   return out;
 }
 
@@ -119,13 +128,18 @@ CreaseMeter::CreaseMeter(const Surface& input, const ShapeChangeOptions& options
     : F_(input.F), vertices_(input.V.rows()), options_(options), edges_(dihedral_edges(input)) {
   if (!(options.crease_threshold_deg >= 0.0 && options.crease_threshold_deg < 180.0))
     throw std::invalid_argument("shape change: the crease threshold must lie in [0, 180) degrees");
-  length_.reserve(edges_.size());
-  for (const DihedralEdge& e : edges_) {
-    length_.push_back((input.V.row(e.v1) - input.V.row(e.v0)).norm());
-    cos_in_.push_back(std::cos(e.angle_deg / kDegrees));
-    sin_in_.push_back(std::sin(e.angle_deg / kDegrees));
-    total_length_ += length_.back();
+  const auto count = static_cast<long>(edges_.size());
+  length_.resize(edges_.size());
+  cos_in_.resize(edges_.size());
+  sin_in_.resize(edges_.size());
+#pragma omp parallel for schedule(static) if (count > 65536)
+  for (long k = 0; k < count; ++k) {
+    const DihedralEdge& e = edges_[static_cast<size_t>(k)];
+    length_[static_cast<size_t>(k)] = (input.V.row(e.v1) - input.V.row(e.v0)).norm();
+    cos_in_[static_cast<size_t>(k)] = std::cos(e.angle_deg / kDegrees);
+    sin_in_[static_cast<size_t>(k)] = std::sin(e.angle_deg / kDegrees);
   }
+  for (double l : length_) total_length_ += l;
 }
 
 void CreaseMeter::changes(const Points& V, std::vector<double>& change, std::vector<char>& measured) const {

@@ -83,8 +83,12 @@ void sort_by_pixel(std::vector<T>& items, int pixels, Less less) {
   std::vector<T> sorted(items.size());
   std::vector<int> fill(begin.begin(), begin.end() - 1);
   for (const T& t : items) sorted[fill[t.pixel]++] = t;
-  for (int p = 0; p < pixels; ++p)
-    if (begin[p + 1] - begin[p] > 1) std::sort(sorted.begin() + begin[p], sorted.begin() + begin[p + 1], less);
+  // Pixels apart on the threads, in 64 ranges (a pixel's items end the same on any thread count).
+  const int ranges = items.size() >= 65536 ? 64 : 1;
+  parallel_for(ranges, [&](int r) {
+    for (int p = static_cast<int>(static_cast<long>(pixels) * r / ranges); p < static_cast<long>(pixels) * (r + 1) / ranges; ++p)
+      if (begin[p + 1] - begin[p] > 1) std::sort(sorted.begin() + begin[p], sorted.begin() + begin[p + 1], less);
+  });
   items.swap(sorted);
 }
 
