@@ -185,15 +185,11 @@ double CreaseMeter::share_pct(const Points& V) const {
   // cross products N0, N1 and the edge E give the cosine and sine both scaled by |N0| |N1| |E|,
   // which the comparison divides out.
   // Plain static loops (no exception can leave these bodies): parallel_for's per-item guard
-  // kept them from vectorising, and glibc's hypot cost as much as the rest of an edge. The
-  // positions and the faces' cross products by rows (a face or an edge reads rows far apart: one
-  // cache line each so, not three), in buffers kept from call to call (a fresh one costs a page
-  // fault every 4 kB).
-  const Eigen::Index nf = F_.rows(), nv = V.rows();
-  RowPoints& P = positions_;
-  P.resize(nv, 3);
-#pragma omp parallel for schedule(static) if (nv > 65536)
-  for (Eigen::Index v = 0; v < nv; ++v) P.row(v) = V.row(v);
+  // kept them from vectorising, and glibc's hypot cost as much as the rest of an edge. The faces'
+  // cross products by rows (an edge reads two far apart: one cache line each so, not three), in a
+  // buffer kept from call to call (a fresh one costs a page fault every 4 kB).
+  const Eigen::Index nf = F_.rows();
+  const Points& P = V;
   RowPoints& cross = cross_;
   cross.resize(nf, 3);
 #pragma omp parallel for schedule(static) if (nf > 65536)

@@ -94,7 +94,7 @@ class CreaseMeter {
   double total_length_ = 0.0;            // of length_, summed in order
   // share_pct's buffers, kept from call to call: one meter serves one thread at a time.
   using RowPoints = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-  mutable RowPoints positions_, cross_;
+  mutable RowPoints cross_;
   mutable std::vector<char> state_;
 };
 

@@ -62,7 +62,8 @@ Points VolumeKeeping::load(const Points& V_start) {
   // then taken to the domain in one pass (its few vertices stay in cache).
   centred_surface(V_start, S_, P_);
   const auto surface = static_cast<int>(P_.rows());
-  gS_.resize(P_.rows(), 3);
+  RowPoints& gS = Q_;  // keep()'s buffer, free here
+  gS.resize(P_.rows(), 3);
 #pragma omp parallel for schedule(static) if (surface > 65536)
   for (int v = 0; v < surface; ++v) {
     Eigen::RowVector3d g = Eigen::RowVector3d::Zero();
@@ -70,11 +71,11 @@ Points VolumeKeeping::load(const Points& V_start) {
       const std::array<int, 2>& other = corner_others_[static_cast<size_t>(j)];
       g += P_.row(other[0]).cross(P_.row(other[1])) / 6.0;
     }
-    gS_.row(v) = g;
+    gS.row(v) = g;
   }
   Points out = Points::Zero(domain_vertices_, 3);
   for (Eigen::Index i = 0; i < P_.rows(); ++i)
-    for (int k = 0; k < 4; ++k) out.row(embedding_.vertex_nodes(i, k)) += embedding_.vertex_bary(i, k) * gS_.row(i);
+    for (int k = 0; k < 4; ++k) out.row(embedding_.vertex_nodes(i, k)) += embedding_.vertex_bary(i, k) * gS.row(i);
   return out;
 }
 
@@ -84,7 +85,7 @@ double VolumeKeeping::keep(double target, const Points& u, Points& proposed) {
   // faces for the coefficients, then Newton's method on the cubic alone. The faces' terms come in
   // blocks, each made on the threads and added in face order.
   centred_surface(proposed, S_, P_);
-  centred_surface(u, Su_, Q_);
+  centred_surface(u, S_, Q_);
   const auto faces = static_cast<int>(F_.rows());
   constexpr int kBlock = 1 << 15;
   terms_.resize(4, std::min(faces, kBlock));

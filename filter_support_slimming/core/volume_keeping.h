@@ -71,8 +71,8 @@ class VolumeKeeping {
   std::vector<int> corner_begin_;
   std::vector<std::array<int, 2>> corner_others_;
   // Buffers kept from call to call: fresh ones cost a page fault every 4 kB, every step.
-  Points S_, Su_;
-  RowPoints P_, Q_, gS_;
+  Points S_;
+  RowPoints P_, Q_;
   Eigen::Matrix<double, 4, Eigen::Dynamic> terms_;
 };
 
