@@ -71,8 +71,8 @@ void one_way(const Surface& from, const Surface& to, double& largest, double& me
 
 // The largest distance from the samples P of one surface to the surface `to`, whose samples Q
 // are their moved copies: the samples in order of how far they moved, searched in blocks until a
-// block starts below the largest distance found. The largest of exact distances: the same value
-// on any thread count.
+// block starts below the largest distance found (a sample with a face of its own grid cell that
+// near is skipped). The largest of exact distances: the same value on any thread count.
 double largest_one_way(const Points& P, const Points& Q, const Surface& to) {
   const Eigen::Index n = P.rows();
   std::vector<std::pair<double, Eigen::Index>> moved(static_cast<size_t>(n));
@@ -87,7 +87,18 @@ double largest_one_way(const Points& P, const Points& Q, const Surface& to) {
 #pragma omp parallel for schedule(dynamic, 64)
     for (Eigen::Index k = start; k < end; ++k) {
       const auto& [bound, i] = moved[static_cast<size_t>(k)];
-      if (bound > largest) d[static_cast<size_t>(k - start)] = distance_to(P.row(i).transpose(), to, grid);
+      if (!(bound > largest)) continue;
+      const Eigen::Vector3d p = P.row(i).transpose();
+      // A face of the sample's own cell within the largest distance found already: the sample
+      // cannot raise it, and the full search (its shells of cells) is spared. Most samples of a
+      // slimmed part slid along the surface further than the part moved off it.
+      bool near = false;
+      for (int f : grid.items(grid.index(grid.cell_of(p))))
+        if ((closest_on_triangle(p, corner(to, f, 0), corner(to, f, 1), corner(to, f, 2)) - p).norm() <= largest) {
+          near = true;
+          break;
+        }
+      if (!near) d[static_cast<size_t>(k - start)] = distance_to(p, to, grid);
     }
     for (double x : d) largest = std::max(largest, x);
   }

@@ -124,21 +124,36 @@ class UniformGrid {
         from(k) = std::max(centre(k) - shell, 0);
         to(k) = std::min(centre(k) + shell, dims_(k) - 1);
       }
-      for (int z = from(2); z <= to(2); ++z)
-        for (int y = from(1); y <= to(1); ++y)
-          for (int x = from(0); x <= to(0); ++x) {
-            const int ring = std::max({std::abs(x - centre(0)), std::abs(y - centre(1)), std::abs(z - centre(2))});
-            if (ring != shell) continue;  // visited in an earlier shell
-            for (int i : items(index(x, y, z))) {
-              const double d = distance(i);
-              // The first item seen is taken whatever its distance: one that overflows to
-              // infinity (or is NaN) must not leave the answer undefined.
-              if (best_item < 0 || d < best || (d == best && i < best_item)) {
-                best = d;
-                best_item = i;
-              }
-            }
+      auto visit = [&](int x, int y, int z) {
+        // A cell farther than the nearest item found holds no nearer one: an item's nearest point
+        // lies in one of its cells, and that cell is no farther than the item (the outer cells
+        // reach on to infinity; a margin for the rounding of both distances).
+        const Items cell = items(index(x, y, z));
+        if (cell.first == cell.last) return;
+        if (best_item >= 0 && cell_distance(p, Eigen::Vector3i(x, y, z)) > best * (1.0 + 1e-9)) return;
+        for (int i : cell) {
+          const double d = distance(i);
+          // The first item seen is taken whatever its distance: one that overflows to infinity
+          // (or is NaN) must not leave the answer undefined.
+          if (best_item < 0 || d < best || (d == best && i < best_item)) {
+            best = d;
+            best_item = i;
           }
+        }
+      };
+      // The cells of this shell only (the block's inner cells were visited in earlier shells):
+      // whole planes where z is on the shell, whole rows where y is, else the row's two ends.
+      for (int z = from(2); z <= to(2); ++z) {
+        const bool z_ring = std::abs(z - centre(2)) == shell;
+        for (int y = from(1); y <= to(1); ++y) {
+          if (z_ring || std::abs(y - centre(1)) == shell) {
+            for (int x = from(0); x <= to(0); ++x) visit(x, y, z);
+            continue;
+          }
+          if (centre(0) - shell >= 0) visit(centre(0) - shell, y, z);
+          if (shell > 0 && centre(0) + shell <= dims_(0) - 1) visit(centre(0) + shell, y, z);
+        }
+      }
       // Every item not seen yet lies in a cell outside the visited block, so at least as far as
       // the nearest of the block's faces that have cells beyond them.
       double unseen = HUGE_VAL;
@@ -149,6 +164,19 @@ class UniformGrid {
       if (best < unseen) break;
     }
     return best_item;
+  }
+
+  // The distance from p to cell c's box (an outer cell reaching on to infinity).
+  double cell_distance(const Eigen::Vector3d& p, const Eigen::Vector3i& c) const {
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double lo = origin_(k) + c(k) * cell_(k), hi = origin_(k) + (c(k) + 1) * cell_(k);
+      double gap = 0.0;
+      if (c(k) > 0 && p(k) < lo) gap = lo - p(k);
+      if (c(k) < dims_(k) - 1 && p(k) > hi) gap = p(k) - hi;
+      d2 += gap * gap;
+    }
+    return std::sqrt(d2);
   }
 
   const Eigen::Vector3d& origin() const { return origin_; }
