@@ -6,7 +6,11 @@
 // Refinement splits each triangle in four in its own plane, so the faces of one original triangle
 // share a normal (to the last bits), which the local step merges; a scan has no such faces:
 // --jitter MM moves every vertex of the refined bunny by up to MM (a fixed seed), so none do.
-//   slimming_stages [--runs N] [--iterations N] [--end-to-end FACES] [--jitter MM]
+// --mesh PATH: the end-to-end run refines that mesh instead (data/corpus/bunny_70k.ply refined
+// twice: the 1,114,656-face bunny of issue 15's target); --skip-stages leaves out the three small
+// resolutions.
+//   slimming_stages [--runs N] [--iterations N] [--end-to-end FACES] [--jitter MM] [--mesh PATH]
+//                   [--skip-stages 1]
 #include <algorithm>
 #include <chrono>
 #include <random>
@@ -36,10 +40,10 @@ long peak_rss_mb() {
   if (f) std::fclose(f);
   return kb / 1024;
 }
-// One whole run at the defaults on the bunny refined to at least `faces`, every vertex moved by up
-// to `jitter` mm (a fixed seed), stage by stage.
-void run_end_to_end(const Surface& bunny, long faces, double jitter, int runs) {
-  Surface big = bunny;
+// One whole run at the defaults on `start` refined to at least `faces`, every vertex moved by up to
+// `jitter` mm (a fixed seed), stage by stage.
+void run_end_to_end(const Surface& start, long faces, double jitter, int runs) {
+  Surface big = start;
   while (big.F.rows() < faces) big = test::refined(big, 1);
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -70,12 +74,16 @@ int main(int argc, char** argv) {
   int runs = 5, iterations = 20;
   long end_to_end = 0;
   double jitter = 0.0;
+  std::string mesh;
+  bool stages = true;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--runs") runs = std::stoi(argv[i + 1]);
     if (a == "--iterations") iterations = std::stoi(argv[i + 1]);
     if (a == "--end-to-end") end_to_end = std::stol(argv[i + 1]);
     if (a == "--jitter") jitter = std::stod(argv[i + 1]);
+    if (a == "--mesh") mesh = argv[i + 1];
+    if (a == "--skip-stages") stages = std::string(argv[i + 1]) != "1";
   }
   const Surface bunny = test::load_mesh(test::sample_bunny_path());
   std::printf("median of %d runs of up to %d iterations, no budget, no stall stop; times in ms, per iteration\n"
@@ -84,6 +92,7 @@ int main(int argc, char** argv) {
   std::printf("%10s %8s %8s %4s | %7s %7s %8s | %8s %8s %8s %9s | %7s %7s %6s | %8s\n", "resolution", "dom.V", "dom.T", "its",
               "domain", "embed", "factor", "local/it", "glob/it", "model/it", "iteration", "backsub", "ratio", "50 it", "total");
   for (int resolution : {13, 32, 60}) {
+    if (!stages) break;
     std::vector<double> dom, emb, fac, loc, glo, model, it, back, total, ran_counts;
     SlimmingResult r;
     for (int k = 0; k < runs; ++k) {
@@ -129,6 +138,6 @@ int main(int argc, char** argv) {
                 median(dom) + median(emb) + median(fac) + 50 * per_it, median(total));
   }
   std::printf("peak memory (VmHWM): %ld MB\n", peak_rss_mb());
-  if (end_to_end > 0) run_end_to_end(bunny, end_to_end, jitter, runs);
+  if (end_to_end > 0) run_end_to_end(mesh.empty() ? bunny : test::load_mesh(mesh), end_to_end, jitter, runs);
   return 0;
 }
