@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -94,6 +95,15 @@ bool inside_out(const Points& V, const Triangles& F) {
 struct PrintFrame {
   Surface part;         // its faces: the estimate's, or those turned over (turned)
   bool turned = false;
+  // The adjacency of the faces turned over, made the first time a pose needs it: the raster reads
+  // edge k of face f as the frame's faces run, and turning a face over renumbers its edges.
+  std::unique_ptr<FaceAdjacency> turned_adjacency;
+  const FaceAdjacency& adjacency(const FaceAdjacency& as_given) {
+    if (!turned) return as_given;
+    if (!turned_adjacency)
+      turned_adjacency = std::make_unique<FaceAdjacency>(part.F, part.V.rows(), as_given.has_every_twin());
+    return *turned_adjacency;
+  }
 };
 
 // Positions V (faces F) into `frame`: turned about +Z, resting on z = 0; the faces turned over
@@ -179,7 +189,7 @@ SupportEstimate estimate_with(const Points& V, const Triangles& F, const FaceAdj
     const PixelGrid grid = raster_grid(frame, o);
     const double cells = static_cast<double>(grid.nx / o.pixels_per_cell) * (grid.ny / o.pixels_per_cell);
     require(cells * layer_count <= kMaxCellLayers, "the part is too large for the support model (more than 1e9 grid cells times layers)");
-    const SupportRaster raster = build_support_raster(frame, adjacency, grid, rule);
+    const SupportRaster raster = build_support_raster(frame, print.adjacency(adjacency), grid, rule);
     const GridSupportSweep sweep(raster, layers, settings);
     std::vector<GridSweepResult> phase(offsets.size());
     parallel_for(static_cast<int>(offsets.size()), [&](int k) { phase[k] = sweep.run(offsets[k].first, offsets[k].second); });

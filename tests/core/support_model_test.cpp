@@ -348,5 +348,23 @@ TEST(SupportModel, RejectsBadInput) {
   EXPECT_THROW(estimate_support(test::t_shape(), o), std::invalid_argument);
 }
 
+// A part whose faces are turned over (inside out: every normal into the part) is the same part:
+// the model turns its faces back in the print frame, and reads their edges as they then run. Its
+// estimate is the part's own, bit for bit, by estimate_support and by one model through both; a
+// closed part, a mirrored one, and an open one (a box with a window, read slice by slice).
+TEST(SupportModel, AnInsideOutPartIsEstimatedAsThePartItself) {
+  const Surface m = test::refined(test::mushroom(), 1);
+  const Surface mirrored = test::transformed(m, Eigen::Vector3d(-1, 1, 1).asDiagonal(), Vector3d::Zero());
+  for (const Surface& part : {m, flipped(mirrored), test::box_with_windows(5.0)}) {
+    const Surface inside_out = flipped(part);
+    const SupportEstimate a = estimate_support(part), b = estimate_support(inside_out);
+    EXPECT_GT(a.volume_mm3, 0.0);
+    EXPECT_EQ(a.volume_mm3, b.volume_mm3);
+    EXPECT_EQ(a.phase_mm3, b.phase_mm3);
+    SupportModel model(inside_out.F, inside_out.V.rows());
+    for (int k = 0; k < 2; ++k) EXPECT_EQ(model.estimate(inside_out.V).volume_mm3, a.volume_mm3) << k;
+  }
+}
+
 }  // namespace
 }  // namespace slim
