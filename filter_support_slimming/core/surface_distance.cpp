@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
 
-#include "core/uniform_grid.h"
+#include "core/face_box_tree.h"
 
 namespace slim {
 
@@ -31,38 +32,14 @@ Points samples(const Surface& s) {
   return P;
 }
 
-// The faces of s in a uniform grid of about one cell per face.
-UniformGrid face_grid(const Surface& s) {
-  const Eigen::Vector3d lo = s.V.colwise().minCoeff().transpose(), hi = s.V.colwise().maxCoeff().transpose();
-  const double diag = (hi - lo).norm();
-  const Eigen::Vector3d extent = (hi - lo) + Eigen::Vector3d::Constant(1e-9 * diag + 1e-300);
-  const double side = std::cbrt(extent.prod() / std::max<double>(1.0, static_cast<double>(s.F.rows())));
-  Eigen::Vector3i dims;
-  for (int a = 0; a < 3; ++a) dims(a) = std::clamp(static_cast<int>(std::ceil(extent(a) / std::max(side, 1e-300))), 1, 256);
-  UniformGrid grid(lo, extent.cwiseQuotient(dims.cast<double>()), dims);
-  grid.fill(static_cast<int>(s.F.rows()), [&](int f, Eigen::Vector3d& a, Eigen::Vector3d& b) {
-    a = corner(s, f, 0).cwiseMin(corner(s, f, 1)).cwiseMin(corner(s, f, 2));
-    b = corner(s, f, 0).cwiseMax(corner(s, f, 1)).cwiseMax(corner(s, f, 2));
-  });
-  return grid;
-}
-
-// The distance from q to the surface `to` whose faces fill `grid`.
-double distance_to(const Eigen::Vector3d& q, const Surface& to, const UniformGrid& grid) {
-  double best = HUGE_VAL;
-  grid.nearest(q, [&](int f) { return (closest_on_triangle(q, corner(to, f, 0), corner(to, f, 1), corner(to, f, 2)) - q).norm(); },
-               best);
-  return best;
-}
-
 // The largest and mean distance from the samples of `from` to the surface `to`.
 void one_way(const Surface& from, const Surface& to, double& largest, double& mean) {
   const Points P = samples(from);
-  const UniformGrid grid = face_grid(to);
+  const FaceBoxTree tree(to);
   const Eigen::Index n = P.rows();
   std::vector<double> d(static_cast<size_t>(n));
 #pragma omp parallel for schedule(dynamic, 1024)
-  for (Eigen::Index i = 0; i < n; ++i) d[static_cast<size_t>(i)] = distance_to(P.row(i).transpose(), to, grid);
+  for (Eigen::Index i = 0; i < n; ++i) d[static_cast<size_t>(i)] = tree.distance(P.row(i).transpose());
   largest = n > 0 ? *std::max_element(d.begin(), d.end()) : 0.0;
   double sum = 0.0;
   for (double x : d) sum += x;  // in order: the same bits on any thread count
@@ -71,37 +48,41 @@ void one_way(const Surface& from, const Surface& to, double& largest, double& me
 
 // The largest distance from the samples P of one surface to the surface `to`, whose samples Q
 // are their moved copies: the samples in order of how far they moved, searched in blocks until a
-// block starts below the largest distance found (a sample with a face of its own grid cell that
-// near is skipped). The largest of exact distances: the same value on any thread count.
+// block starts below the largest distance found. The largest of exact distances: the same value
+// on any thread count.
 double largest_one_way(const Points& P, const Points& Q, const Surface& to) {
   const Eigen::Index n = P.rows();
-  std::vector<std::pair<double, Eigen::Index>> moved(static_cast<size_t>(n));
+  using Moved = std::pair<double, Eigen::Index>;
+  std::vector<Moved> moved(static_cast<size_t>(n));
+#pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < n; ++i) moved[static_cast<size_t>(i)] = {(P.row(i) - Q.row(i)).norm(), i};
-  std::sort(moved.begin(), moved.end(), [](const auto& x, const auto& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); });
-  const UniformGrid grid = face_grid(to);
+  auto further = [](const Moved& x, const Moved& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); };
+  const FaceBoxTree tree(to);
   constexpr Eigen::Index kBlock = 4096;
   double largest = 0.0;
-  for (Eigen::Index start = 0; start < n && moved[static_cast<size_t>(start)].first > largest; start += kBlock) {
-    const Eigen::Index end = std::min(n, start + kBlock);
-    std::vector<double> d(static_cast<size_t>(end - start), 0.0);
+  // In blocks, the samples that moved most first, until a block starts at no more than the largest
+  // distance found.
+  auto search = [&](const std::vector<Moved>& list, Eigen::Index count) {
+    for (Eigen::Index start = 0; start < count && list[static_cast<size_t>(start)].first > largest; start += kBlock) {
+      const Eigen::Index end = std::min(count, start + kBlock);
+      std::vector<double> d(static_cast<size_t>(end - start), 0.0);
 #pragma omp parallel for schedule(dynamic, 64)
-    for (Eigen::Index k = start; k < end; ++k) {
-      const auto& [bound, i] = moved[static_cast<size_t>(k)];
-      if (!(bound > largest)) continue;
-      const Eigen::Vector3d p = P.row(i).transpose();
-      // A face of the sample's own cell within the largest distance found already: the sample
-      // cannot raise it, and the full search (its shells of cells) is spared. Most samples of a
-      // slimmed part slid along the surface further than the part moved off it.
-      bool near = false;
-      for (int f : grid.items(grid.index(grid.cell_of(p))))
-        if ((closest_on_triangle(p, corner(to, f, 0), corner(to, f, 1), corner(to, f, 2)) - p).norm() <= largest) {
-          near = true;
-          break;
-        }
-      if (!near) d[static_cast<size_t>(k - start)] = distance_to(p, to, grid);
+      for (Eigen::Index k = start; k < end; ++k) {
+        const auto& [bound, i] = list[static_cast<size_t>(k)];
+        if (bound > largest) d[static_cast<size_t>(k - start)] = tree.distance(P.row(i).transpose());
+      }
+      for (double x : d) largest = std::max(largest, x);
     }
-    for (double x : d) largest = std::max(largest, x);
-  }
+  };
+  // Sorted in two rounds: the first block, then only the samples that moved more than its largest
+  // distance (sorting all of them took as long as the searches).
+  const Eigen::Index first = std::min(kBlock, n);
+  std::partial_sort(moved.begin(), moved.begin() + first, moved.end(), further);
+  search(moved, first);
+  std::vector<Moved> rest;
+  std::copy_if(moved.begin() + first, moved.end(), std::back_inserter(rest), [&](const Moved& m) { return m.first > largest; });
+  std::sort(rest.begin(), rest.end(), further);
+  search(rest, static_cast<Eigen::Index>(rest.size()));
   return largest;
 }
 

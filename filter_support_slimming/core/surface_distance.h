@@ -9,7 +9,7 @@
 //   surface to the nearest point of the other (mm): its vertices, its face centroids and its edge
 //   midpoints (samples of zero-area faces too). hausdorff_mm = the larger of the two largest.
 // Exact point-to-triangle distances (the closest point on each candidate triangle), the candidates
-// from a uniform grid of the other surface's face boxes (uniform_grid.h), so the cost is about
+// from a tree of the other surface's face boxes (face_box_tree.h), so the cost is about
 // O((#V + #F) log) rather than O(#V #F). Deterministic; parallel over the samples.
 // tools/hausdorff.sh measures the same with MeshLab's filter (its 100,000 samples on faces, edges
 // and vertices): the two agree to the sampling's resolution.

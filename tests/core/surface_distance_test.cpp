@@ -40,7 +40,7 @@ TEST(SurfaceDistance, ClosestPointOnATriangleIsNoFartherThanAnyOfItsPoints) {
   }
 }
 
-TEST(SurfaceDistance, GridSearchEqualsAScanOfEveryFace) {
+TEST(SurfaceDistance, TheSearchEqualsAScanOfEveryFace) {
   const Surface a = test::refined(test::t_shape(), 2);
   Surface b = test::transformed(a, test::axis_angle(Eigen::Vector3d(1, 2, 3).normalized(), 0.2), Eigen::Vector3d(1, -2, 0.5));
   const SurfaceDistance d = surface_distance(a, b);

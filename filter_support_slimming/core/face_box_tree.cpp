@@ -1,0 +1,103 @@
+#include "core/face_box_tree.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/surface_distance.h"
+
+namespace slim {
+namespace {
+constexpr int kLeafFaces = 8;
+}  // namespace
+
+FaceBoxTree::FaceBoxTree(const Surface& surface) : s_(surface) {
+  const int faces = static_cast<int>(surface.F.rows());
+  order_.resize(static_cast<size_t>(faces));
+  std::vector<Eigen::Vector3d> centroid(static_cast<size_t>(faces));
+  for (int f = 0; f < faces; ++f) {
+    order_[static_cast<size_t>(f)] = f;
+    centroid[static_cast<size_t>(f)] =
+        (surface.V.row(surface.F(f, 0)) + surface.V.row(surface.F(f, 1)) + surface.V.row(surface.F(f, 2))).transpose() / 3.0;
+  }
+  nodes_.reserve(static_cast<size_t>(2 * (faces / kLeafFaces + 1)));
+  if (faces > 0) build(0, faces, centroid);
+}
+
+int FaceBoxTree::build(int first, int count, std::vector<Eigen::Vector3d>& centroid) {
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  if (count <= kLeafFaces) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+    for (int i = first; i < first + count; ++i)
+      for (int k = 0; k < 3; ++k) {
+        lo = lo.cwiseMin(s_.V.row(s_.F(order_[static_cast<size_t>(i)], k)).transpose());
+        hi = hi.cwiseMax(s_.V.row(s_.F(order_[static_cast<size_t>(i)], k)).transpose());
+      }
+    Node& n = nodes_[static_cast<size_t>(id)];
+    n.lo = lo, n.hi = hi, n.first = first, n.count = count;
+    return id;
+  }
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+  for (int i = first; i < first + count; ++i) {
+    lo = lo.cwiseMin(centroid[static_cast<size_t>(order_[static_cast<size_t>(i)])]);
+    hi = hi.cwiseMax(centroid[static_cast<size_t>(order_[static_cast<size_t>(i)])]);
+  }
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  const auto begin = order_.begin() + first, middle = begin + count / 2, end = begin + count;
+  // Ties by face index: the split, and so the tree, is the same on every run.
+  std::nth_element(begin, middle, end, [&](int a, int b) {
+    const double x = centroid[static_cast<size_t>(a)](axis), y = centroid[static_cast<size_t>(b)](axis);
+    return x < y || (x == y && a < b);
+  });
+  const int left = build(first, count / 2, centroid);
+  const int right = build(first + count / 2, count - count / 2, centroid);
+  // The box from the children's (nodes_ may have grown: no reference held across the calls).
+  Node& n = nodes_[static_cast<size_t>(id)];
+  n.lo = nodes_[static_cast<size_t>(left)].lo.cwiseMin(nodes_[static_cast<size_t>(right)].lo);
+  n.hi = nodes_[static_cast<size_t>(left)].hi.cwiseMax(nodes_[static_cast<size_t>(right)].hi);
+  n.left = left;
+  n.right = right;
+  return id;
+}
+
+double FaceBoxTree::box_distance(const Node& n, const Eigen::Vector3d& p) const {
+  return (p.cwiseMax(n.lo).cwiseMin(n.hi) - p).norm();
+}
+
+double FaceBoxTree::distance(const Eigen::Vector3d& p, int* face) const {
+  double best = HUGE_VAL;
+  int best_face = -1;
+  if (nodes_.empty()) {
+    if (face) *face = best_face;
+    return best;
+  }
+  // A box no nearer than the nearest face found holds no nearer face; the margin covers the
+  // rounding of the two distances (a face at exactly that distance, of a lower index, is still seen).
+  auto far = [&](const Node& n) { return best_face >= 0 && box_distance(n, p) > best * (1.0 + 1e-9); };
+  std::array<int, 128> stack;  // one node a level plus one: the tree is about log2(#F / 8) deep
+  int top = 0;
+  stack[static_cast<size_t>(top++)] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[static_cast<size_t>(stack[static_cast<size_t>(--top)])];
+    if (far(n)) continue;
+    if (n.left < 0) {
+      for (int i = n.first; i < n.first + n.count; ++i) {
+        const int f = order_[static_cast<size_t>(i)];
+        const double d = (closest_on_triangle(p, s_.V.row(s_.F(f, 0)).transpose(), s_.V.row(s_.F(f, 1)).transpose(),
+                                              s_.V.row(s_.F(f, 2)).transpose()) - p).norm();
+        if (best_face < 0 || d < best || (d == best && f < best_face)) best = d, best_face = f;
+      }
+      continue;
+    }
+    const Node &a = nodes_[static_cast<size_t>(n.left)], &b = nodes_[static_cast<size_t>(n.right)];
+    const bool left_first = box_distance(a, p) <= box_distance(b, p);
+    stack[static_cast<size_t>(top++)] = left_first ? n.right : n.left;  // the nearer on top: visited first
+    stack[static_cast<size_t>(top++)] = left_first ? n.left : n.right;
+  }
+  if (face) *face = best_face;
+  return best;
+}
+
+}  // namespace slim

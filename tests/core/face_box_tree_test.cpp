@@ -1,0 +1,53 @@
+// The distance from a point to a surface through the tree of face boxes (core/face_box_tree.h)
+// against a scan of every face: the same distance to the bit and the same face (ties: the lower),
+// for points near the surface, far outside it and on its vertices (where faces tie), on a bumpy
+// ball, a T with long thin faces, a surface with faces of no area, and none.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/face_box_tree.h"
+#include "core/surface_distance.h"
+#include "support/shapes.h"
+
+using namespace slim;
+
+namespace {
+
+double scan(const Surface& s, const Eigen::Vector3d& p, int& face) {
+  double best = HUGE_VAL;
+  face = -1;
+  for (int f = 0; f < static_cast<int>(s.F.rows()); ++f) {
+    const double d = (closest_on_triangle(p, s.V.row(s.F(f, 0)).transpose(), s.V.row(s.F(f, 1)).transpose(),
+                                          s.V.row(s.F(f, 2)).transpose()) - p).norm();
+    if (face < 0 || d < best) best = d, face = f;
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST(FaceBoxTree, TheDistanceAndFaceAreAScansToTheBit) {
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> bump(-0.2, 0.2), near(-12.0, 12.0), far(-80.0, 80.0);
+  Surface ball = test::icosphere(4);
+  for (Eigen::Index v = 0; v < ball.V.rows(); ++v) ball.V.row(v) *= 1.0 + 0.05 * bump(gen);
+  Surface squashed = test::refined(test::t_shape(), 1);
+  for (Eigen::Index f = 0; f < squashed.F.rows(); f += 7) squashed.V.row(squashed.F(f, 1)) = squashed.V.row(squashed.F(f, 0));
+  for (const Surface& s : {ball, test::t_shape(), squashed}) {
+    const FaceBoxTree tree(s);
+    for (int q = 0; q < 900; ++q) {
+      const Eigen::Vector3d p = q < 300   ? Eigen::Vector3d(near(gen), near(gen), 10.0 + near(gen))
+                                : q < 600 ? Eigen::Vector3d(far(gen), far(gen), far(gen))
+                                          : Eigen::Vector3d(s.V.row(q % s.V.rows()).transpose());
+      int expected_face = -1, face = -2;
+      const double expected = scan(s, p, expected_face);
+      EXPECT_EQ(tree.distance(p, &face), expected) << p.transpose();
+      EXPECT_EQ(face, expected_face) << p.transpose();
+    }
+  }
+  int face = 0;
+  EXPECT_EQ(FaceBoxTree(Surface{}).distance(Eigen::Vector3d::Zero(), &face), HUGE_VAL);
+  EXPECT_EQ(face, -1);
+}
