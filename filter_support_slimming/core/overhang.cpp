@@ -47,14 +47,9 @@ OverhangReport analyse_overhang(const CheckedSurface& checked, const OverhangOpt
   r.quality.resize(faces);
 #pragma omp parallel for schedule(static) if (faces > 65536)
   for (int f = 0; f < faces; ++f) {
-    const Eigen::Vector3d a = s.V.row(s.F(f, 0)).transpose(), b = s.V.row(s.F(f, 1)).transpose(),
-                          c = s.V.row(s.F(f, 2)).transpose();
-    const Eigen::Vector3d cross = (b - a).cross(c - a);
-    const double len = cross.norm();
-    // A face whose area underflows has no direction (face_normals: a zero normal).
-    const Eigen::Vector3d n = len > 0.0 && std::isfinite(len) ? Eigen::Vector3d(cross / len) : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d cross = face_cross(s.V, s.F, f), n = unit_normal(cross);
     const double n_dot_d = n(0) * d(0) + n(1) * d(1) + n(2) * d(2);
-    area(f) = 0.5 * len;
+    area(f) = 0.5 * cross.norm();
     r.quality(f) = n_dot_d + tau;
     const double h0 = height(s.F(f, 0)), h1 = height(s.F(f, 1)), h2 = height(s.F(f, 2));
     support[static_cast<size_t>(f)] = face_support(h0, h1, h2, r.plate_height, options.plate_tolerance, r.quality(f));

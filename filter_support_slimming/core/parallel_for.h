@@ -14,6 +14,10 @@
 // ThreadScope(threads): the OpenMP thread count for the lifetime of the object (threads > 0), the
 // previous one restored after; threads <= 0 keeps the runtime's default.
 //
+// gather_in_ranges<T>(n, body): items 0..n-1 cut into ranges whose outputs are gathered apart on
+// the threads (body(begin, end, out) appends what items [begin, end) give to `out`), joined in
+// range order: the sequence one pass would give, whatever the thread count.
+//
 // SerialOpenMPScope: for the lifetime of the object no OpenMP region is active (max-active-levels
 // 0), so a library's regions with a fixed team size run on the calling thread; restored after.
 #pragma once
@@ -23,6 +27,7 @@
 #include <exception>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -112,6 +117,19 @@ void parallel_for(int n, Body&& body) {
     }
   }
   failure.rethrow();
+}
+
+template <class T, class Body>
+std::vector<T> gather_in_ranges(long long n, Body body) {
+  const int ranges = n >= 4096 ? 16 : 1;
+  std::vector<std::vector<T>> parts(static_cast<size_t>(ranges));
+  parallel_for(ranges, [&](int r) { body(n * r / ranges, n * (r + 1) / ranges, parts[static_cast<size_t>(r)]); });
+  size_t total = 0;
+  for (const auto& p : parts) total += p.size();
+  std::vector<T> out;
+  out.reserve(total);
+  for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
+  return out;
 }
 
 }  // namespace slim

@@ -139,7 +139,6 @@ CreaseMeter::CreaseMeter(const Surface& input, const ShapeChangeOptions& options
     cos_in_[static_cast<size_t>(k)] = std::cos(e.angle_deg / kDegrees);
     sin_in_[static_cast<size_t>(k)] = std::sin(e.angle_deg / kDegrees);
   }
-  for (double l : length_) total_length_ += l;
 }
 
 void CreaseMeter::changes(const Points& V, std::vector<double>& change, std::vector<char>& measured) const {
@@ -189,38 +188,32 @@ double CreaseMeter::share_pct(const Points& V) const {
   // cross products by rows (an edge reads two far apart: one cache line each so, not three), in a
   // buffer kept from call to call (a fresh one costs a page fault every 4 kB).
   const Eigen::Index nf = F_.rows();
-  const Points& P = V;
   RowPoints& cross = cross_;
   cross.resize(nf, 3);
 #pragma omp parallel for schedule(static) if (nf > 65536)
-  for (Eigen::Index f = 0; f < nf; ++f) {
-    const Eigen::RowVector3d a = P.row(F_(f, 0));
-    cross.row(f) = (P.row(F_(f, 1)) - a).cross(P.row(F_(f, 2)) - a);
-  }
+  for (Eigen::Index f = 0; f < nf; ++f) cross.row(f) = face_cross(V, F_, f).transpose();
   const double cos_threshold = std::cos(options_.crease_threshold_deg / kDegrees);
   const auto edges = static_cast<Eigen::Index>(edges_.size());
   std::vector<char>& state = state_;  // 0 not measured, 1 measured, 2 creased
   state.resize(edges_.size());
-  long unmeasured = 0;
-#pragma omp parallel for schedule(static) reduction(+ : unmeasured) if (edges > 65536)
+#pragma omp parallel for schedule(static) if (edges > 65536)
   for (Eigen::Index k = 0; k < edges; ++k) {
     const DihedralEdge& e = edges_[static_cast<size_t>(k)];
     const Eigen::Vector3d n0 = cross.row(e.f0).transpose(), n1 = cross.row(e.f1).transpose();
-    const Eigen::Vector3d edge = (P.row(e.v1) - P.row(e.v0)).transpose();
+    const Eigen::Vector3d edge = (V.row(e.v1) - V.row(e.v0)).transpose();
     const double length = edge.norm();
     const double cos_new = n0.dot(n1) * length, sin_new = n0.cross(n1).dot(edge);
     const double scale = std::sqrt(cos_new * cos_new + sin_new * sin_new);
     const double cos_change = cos_new * cos_in_[static_cast<size_t>(k)] + sin_new * sin_in_[static_cast<size_t>(k)];
     const bool area = n0.squaredNorm() > 0.0 && n1.squaredNorm() > 0.0 && std::isfinite(scale);
     state[static_cast<size_t>(k)] = !area || !(scale > 0.0) ? 0 : cos_change < cos_threshold * scale ? 2 : 1;
-    unmeasured += state[static_cast<size_t>(k)] == 0;
   }
-  // The sums in edge order, as measure() makes them; without branches (adding 0 changes no bit),
-  // and the total the meter's own when every edge was measured.
+  // The sums in edge order, as measure() makes them (an unmeasured edge adds 0: no bit changes).
   double creased = 0.0, total = 0.0;
-  for (size_t k = 0; k < edges_.size(); ++k) creased += state[k] == 2 ? length_[k] : 0.0;
-  if (unmeasured == 0) return total_length_ > 0.0 ? 100.0 * creased / total_length_ : 0.0;
-  for (size_t k = 0; k < edges_.size(); ++k) total += state[k] ? length_[k] : 0.0;
+  for (size_t k = 0; k < edges_.size(); ++k) {
+    total += state[k] ? length_[k] : 0.0;
+    creased += state[k] == 2 ? length_[k] : 0.0;
+  }
   return total > 0.0 ? 100.0 * creased / total : 0.0;
 }
 

@@ -91,7 +91,6 @@ class CreaseMeter {
   std::vector<DihedralEdge> edges_;  // the input's, with their angles
   std::vector<double> length_;       // the input's edge lengths (mm)
   std::vector<double> cos_in_, sin_in_;  // of the input's angles
-  double total_length_ = 0.0;            // of length_, summed in order
   // share_pct's buffers, kept from call to call: one meter serves one thread at a time.
   using RowPoints = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
   mutable RowPoints cross_;

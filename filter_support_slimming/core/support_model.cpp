@@ -71,10 +71,10 @@ std::vector<std::pair<int, int>> phase_offsets(int per_cell, int phases) {
   return out;
 }
 
-// Whether the enclosed volume of positions V with faces F is negative: signed_volume()'s sum in
-// blocks on the threads (every estimate asks; only the sign is read, which no order of the sum
-// changes but for a part of no volume).
-bool inside_out(const Points& V, const Triangles& F) {
+// Whether the enclosed volume of positions V with faces F is negative: signed_volume()'s terms,
+// summed in blocks on the threads (every estimate asks, and signed_volume() is one serial pass;
+// only the sign is read, which no order of the sum changes but for a part of no volume).
+bool negative_volume(const Points& V, const Triangles& F) {
   const Eigen::RowVector3d centre = V.colwise().mean();
   const Eigen::Index faces = F.rows(), block = 1 << 16;
   std::vector<double> part(static_cast<size_t>((faces + block - 1) / block), 0.0);
@@ -119,7 +119,7 @@ void print_frame(const Points& V, const Triangles& F, const SupportModelOptions&
     frame.part.F = F;
     frame.turned = false;
   }
-  const bool turn_over = inside_out(frame.part.V, F);
+  const bool turn_over = negative_volume(frame.part.V, F);
   if (turn_over != frame.turned) frame.part.F.col(1).swap(frame.part.F.col(2));
   frame.turned = turn_over;
 }

@@ -58,22 +58,6 @@ void pixel_range(double a, double b, double origin, double pixel, int n, int& lo
   hi = static_cast<int>(std::max(-1.0, std::min(h, static_cast<double>(n - 1))));
 }
 
-// Items 0..n-1 (faces, vertices) cut into ranges whose outputs are gathered apart, on the OpenMP
-// threads, and joined in range order: the sequence one pass would give, whatever the thread count.
-// body(begin, end, out) appends what items [begin, end) give.
-template <class T, class Body>
-std::vector<T> gather_in_ranges(Eigen::Index n, Body body) {
-  const int ranges = n >= 4096 ? 16 : 1;
-  std::vector<std::vector<T>> parts(static_cast<size_t>(ranges));
-  parallel_for(ranges, [&](int r) { body(n * r / ranges, n * (r + 1) / ranges, parts[static_cast<size_t>(r)]); });
-  size_t total = 0;
-  for (const auto& p : parts) total += p.size();
-  std::vector<T> out;
-  out.reserve(total);
-  for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
-  return out;
-}
-
 // Stable counting sort of items by their pixel, then each pixel's items by `less`.
 template <class T, class Less>
 void sort_by_pixel(std::vector<T>& items, int pixels, Less less) {
@@ -224,10 +208,7 @@ double crease_reach(const Vec3& a, const Vec3& b, const Vec3& n1, const Vec3& n2
 std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule) {
   const int nf = static_cast<int>(s.F.rows());
   const double cos_max = std::cos(rule.max_slope_deg * M_PI / 180.0), cos_dense = std::cos(rule.dense_slope_deg * M_PI / 180.0);
-  auto normal_of = [&](int f) -> Vec3 {
-    const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    return (b - a).cross(c - a);
-  };
+  auto normal_of = [&](int f) -> Vec3 { return face_cross(s.V, s.F, f); };
   std::vector<char> kind(static_cast<size_t>(nf), 0);
   parallel_for(nf, [&](int f) {
     const Vec3 n = normal_of(f);

@@ -10,37 +10,19 @@
 
 namespace slim {
 
-namespace {
-Eigen::Vector3d face_cross(const Points& V, const Triangles& F, Eigen::Index f) {
-  const Eigen::Vector3d a = V.row(F(f, 0)).transpose();
-  const Eigen::Vector3d b = V.row(F(f, 1)).transpose();
-  const Eigen::Vector3d c = V.row(F(f, 2)).transpose();
-  return (b - a).cross(c - a);
-}
-Eigen::Vector3d face_cross(const Surface& s, Eigen::Index f) { return face_cross(s.V, s.F, f); }
-}  // namespace
-
 Points face_normals(const Surface& s) { return face_normals(s.V, s.F); }
 
 Points face_normals(const Points& V, const Triangles& F) {
   Points n(F.rows(), 3);
 #pragma omp parallel for schedule(static) if (F.rows() > 65536)
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d c = face_cross(V, F, f);
-    const double len = c.norm();
-    // A face whose area underflows has no direction; zero keeps it out of every constraint.
-    if (len > 0.0 && std::isfinite(len))
-      n.row(f) = (c / len).transpose();
-    else
-      n.row(f).setZero();
-  }
+  for (Eigen::Index f = 0; f < F.rows(); ++f) n.row(f) = unit_normal(face_cross(V, F, f)).transpose();  // zero: in no constraint
   return n;
 }
 
 Eigen::VectorXd face_areas(const Surface& s) {
   Eigen::VectorXd a(s.F.rows());
 #pragma omp parallel for schedule(static) if (s.F.rows() > 65536)
-  for (Eigen::Index f = 0; f < s.F.rows(); ++f) a(f) = 0.5 * face_cross(s, f).norm();
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f) a(f) = 0.5 * face_cross(s.V, s.F, f).norm();
   return a;
 }
 

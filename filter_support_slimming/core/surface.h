@@ -7,9 +7,11 @@
 // mesh file or MeshLab layer carries are never trusted.
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace slim {
 
@@ -20,6 +22,19 @@ struct Surface {
   Points V;
   Triangles F;
 };
+
+// Face f's (b - a) x (c - a): its normal scaled by twice its area. Inline: loops over a million
+// faces call it.
+inline Eigen::Vector3d face_cross(const Points& V, const Triangles& F, Eigen::Index f) {
+  const Eigen::Vector3d a = V.row(F(f, 0)).transpose();
+  return (V.row(F(f, 1)).transpose() - a).cross(V.row(F(f, 2)).transpose() - a);
+}
+// A face cross product made unit; the zero vector when its length is 0 or not finite (a face whose
+// area underflows has no direction).
+inline Eigen::Vector3d unit_normal(const Eigen::Vector3d& cross) {
+  const double len = cross.norm();
+  return len > 0.0 && std::isfinite(len) ? Eigen::Vector3d(cross / len) : Eigen::Vector3d::Zero();
+}
 
 // #F by 3 unit normals; a zero-area face gets the zero vector (and area 0, so weight 0).
 Points face_normals(const Surface& s);

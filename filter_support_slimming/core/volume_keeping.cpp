@@ -117,23 +117,6 @@ double VolumeKeeping::keep(double target, const Points& u, Points& proposed) {
   return lambda;
 }
 
-Points embedded_volume_gradient(const Embedding& e, const Triangles& F, const Points& S, Eigen::Index domain_vertices) {
-  // The reference pass, face by face (the tests hold VolumeKeeping::load to its bits).
-  const Eigen::RowVector3d centre = S.colwise().mean();
-  Points gS = Points::Zero(S.rows(), 3);
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d a = (S.row(F(f, 0)) - centre).transpose(), b = (S.row(F(f, 1)) - centre).transpose(),
-                          c = (S.row(F(f, 2)) - centre).transpose();
-    gS.row(F(f, 0)) += b.cross(c).transpose() / 6.0;
-    gS.row(F(f, 1)) += c.cross(a).transpose() / 6.0;
-    gS.row(F(f, 2)) += a.cross(b).transpose() / 6.0;
-  }
-  Points g = Points::Zero(domain_vertices, 3);
-  for (Eigen::Index i = 0; i < S.rows(); ++i)
-    for (int k = 0; k < 4; ++k) g.row(e.vertex_nodes(i, k)) += e.vertex_bary(i, k) * gS.row(i);
-  return g;
-}
-
 Points volume_load(const Embedding& e, const Triangles& F, const Points& V_start) {
   return VolumeKeeping(e, F, V_start.rows()).load(V_start);
 }

@@ -76,10 +76,6 @@ class VolumeKeeping {
   Eigen::Matrix<double, 4, Eigen::Dynamic> terms_;
 };
 
-// d Vol / d V for the embedded surface (#DV by 3, mm²), at domain positions V.
-Points embedded_volume_gradient(const Embedding& embedding, const Triangles& faces, const Points& surface_V,
-                                Eigen::Index domain_vertices);
-
 Points volume_load(const Embedding& embedding, const Triangles& faces, const Points& V_start);
 
 double keep_volume(const Embedding& embedding, const Triangles& faces, double target, const Points& response,

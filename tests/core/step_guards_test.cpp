@@ -144,7 +144,9 @@ TEST(StepGuards, InvertedTetsAreFoundExactly) {
   for (int t = 0; t < m.T.rows(); ++t) {
     const bool listed = std::binary_search(bad.begin(), bad.end(), t);
     const bool touches = (m.T.row(t).array() == inside).any();
-    if (listed) EXPECT_TRUE(touches) << "tet " << t;  // only tets around the moved vertex
+    if (listed) {
+      EXPECT_TRUE(touches) << "tet " << t;  // only tets around the moved vertex
+    }
   }
 }
 
@@ -193,7 +195,9 @@ TEST(StepGuards, RollBackTakesARigidGroupBackWhole) {
   ASSERT_TRUE(roll_back_inverting(current, proposed, m.T, group, inverted_tets(proposed, m.T), held_back));
   EXPECT_TRUE(inverted_tets(proposed, m.T).empty());
   for (Eigen::Index v = 0; v < m.V.rows(); ++v)
-    if (group[static_cast<size_t>(v)] == 0) EXPECT_EQ(proposed.row(v), current.row(v)) << "vertex " << v;
+    if (group[static_cast<size_t>(v)] == 0) {
+      EXPECT_EQ(proposed.row(v), current.row(v)) << "vertex " << v;
+    }
   EXPECT_GE(held_back, 25);  // the whole layer
   EXPECT_EQ(proposed.row(0), proposed_in.row(0));
 }

@@ -25,6 +25,24 @@ double embedded_volume(const Embedding& e, const Triangles& F, const Points& V) 
   return signed_volume(Surface{S, F});
 }
 
+// The volume's gradient as one pass face by face would scatter it (the load's bits are held to
+// it): d Vol / d V at the domain vertices, from the embedded surface S.
+Points embedded_volume_gradient(const Embedding& e, const Triangles& F, const Points& S, Eigen::Index domain_vertices) {
+  const Eigen::RowVector3d centre = S.colwise().mean();
+  Points gS = Points::Zero(S.rows(), 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d a = (S.row(F(f, 0)) - centre).transpose(), b = (S.row(F(f, 1)) - centre).transpose(),
+                          c = (S.row(F(f, 2)) - centre).transpose();
+    gS.row(F(f, 0)) += b.cross(c).transpose() / 6.0;
+    gS.row(F(f, 1)) += c.cross(a).transpose() / 6.0;
+    gS.row(F(f, 2)) += a.cross(b).transpose() / 6.0;
+  }
+  Points g = Points::Zero(domain_vertices, 3);
+  for (Eigen::Index i = 0; i < S.rows(); ++i)
+    for (int k = 0; k < 4; ++k) g.row(e.vertex_nodes(i, k)) += e.vertex_bary(i, k) * gS.row(i);
+  return g;
+}
+
 // Rotations by up to `degrees` about random axes: a global step that squeezes or swells the part.
 std::vector<Eigen::Matrix3d> random_turns(int n, double degrees, unsigned seed) {
   std::mt19937 gen(seed);
