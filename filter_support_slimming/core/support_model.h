@@ -27,8 +27,9 @@
 //   - The grid: square cells of grid_spacing (the support lines' spacing) centred on the part's
 //     bounding box. A cell any overhang touches becomes a support column: the whole cell, minus the
 //     part and an xy_gap around it. The column goes down while some of the cell stays free of the
-//     part, so it stands on the plate or on the part below (a shadowed overhang stands on the
-//     model) and flows around what covers only part of the cell. Tiny islands are never dropped:
+//     part, even a sliver along the part's side (a pixel on its outline), so it stands on the plate
+//     or on the part below (a shadowed overhang stands on the model), flows around what covers
+//     only part of the cell, and fills the cell again where the part recedes below. Tiny islands are never dropped:
 //     each is stretched to a full cell, as the grid style does (support_sweep.h).
 //   - Material: the slicer's support layers (the gaps between contacts split into layers of at
 //     most max_support_layer_height), a sheath around every island, fill lines along x on the cell

@@ -32,6 +32,17 @@ void subtract(const Range* a, const Range* a_end, const Range* b, const Range* b
   }
 }
 
+// a ∩ b, both sorted and disjoint.
+void intersect(const Range* a, const Range* a_end, const Range* b, const Range* b_end, std::vector<Range>& out) {
+  out.clear();
+  while (a != a_end && b != b_end) {
+    const int lo = std::max(a->first, b->first), hi = std::min(a->second, b->second);
+    if (lo <= hi) out.push_back({lo, hi});
+    if (a->second < b->second) ++a;
+    else ++b;
+  }
+}
+
 bool covers(const std::vector<Range>& ranges, int k) {
   for (const Range& r : ranges)
     if (r.first <= k && k <= r.second) return true;
@@ -122,6 +133,8 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
   std::vector<Range> solid, trim, block, contact, dense;
   size_t mark = 0;
   trim_begin.assign(static_cast<size_t>(n) + 1, 0);
+  std::vector<int> block_begin(static_cast<size_t>(n) + 1, 0);
+  std::vector<Range> blocks;
   for (int p = 0; p < n; ++p) {
     solid.clear(), trim.clear(), block.clear(), contact.clear(), dense.clear();
     trim_begin[p] = static_cast<int>(trims.size());
@@ -147,7 +160,8 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
     }
     for (const Range& x : trim) add_range(raw, p, x, kTrim);
     trims.insert(trims.end(), trim.begin(), trim.end());
-    for (const Range& x : block) add_range(raw, p, x, kBlock);
+    block_begin[p] = static_cast<int>(blocks.size());
+    blocks.insert(blocks.end(), block.begin(), block.end());
     for (const Range& x : contact) {
       add_range(raw, p, x, kContact);
       for (int j = x.first; j <= x.second; ++j) has_contact[j] = 1;
@@ -155,6 +169,32 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
     for (const Range& x : dense) add_range(raw, p, x, kDense);
   }
   trim_begin[n] = static_cast<int>(trims.size());
+  block_begin[n] = static_cast<int>(blocks.size());
+  block_events(block_begin, blocks, raw);
+}
+
+// What stops a column: a pixel the part fills in both layers, and its four neighbours too. The
+// slicer's grid fill flows up to the part eroded by one of its pixels (it rasterises the part with
+// any coverage and masks a pixel only when its 3 × 3 neighbourhood is all part), and a column whose
+// cell keeps any sliver free goes on down: where the part recedes below, it fills the cell again.
+void GridSupportSweep::block_events(const std::vector<int>& block_begin, const std::vector<std::pair<int, int>>& blocks,
+                                    std::vector<RawEvent>& raw) const {
+  std::vector<Range> eroded, scratch;
+  const Range* data = blocks.data();
+  for (int j = 0; j < grid_.ny; ++j) {
+    for (int i = 0; i < grid_.nx; ++i) {
+      const int p = i + grid_.nx * j;
+      if (block_begin[p] == block_begin[p + 1]) continue;
+      if (i == 0 || j == 0 || i + 1 == grid_.nx || j + 1 == grid_.ny) continue;  // a neighbour off the raster is free
+      eroded.assign(data + block_begin[p], data + block_begin[p + 1]);
+      for (int q : {p - 1, p + 1, p - grid_.nx, p + grid_.nx}) {
+        intersect(eroded.data(), eroded.data() + eroded.size(), data + block_begin[q], data + block_begin[q + 1], scratch);
+        eroded.swap(scratch);
+        if (eroded.empty()) break;
+      }
+      for (const Range& x : eroded) add_range(raw, p, x, kBlock);
+    }
+  }
 }
 
 // The part's outline in every trimmed layer: an edge between a trimmed pixel and a free one is

@@ -15,8 +15,12 @@
 //   - an overhang at object layer k puts a contact in its pixel's cell at the highest support
 //     layer whose top lies contact_distance below layer k's bottom (none below the first layer);
 //     a feature over a pixel that the part fills just below it is hidden and ignored;
-//   - a cell is a column at j when it has a contact at j, or was one at j + 1 and some pixel of it
-//     is free of the part in both object layers j and j + 1 (the projection passes);
+//   - a cell is a column at j when it has a contact at j, or was one at j + 1 and the projection
+//     passes: some pixel of it is free of the part in object layers j and j + 1, or lies on the
+//     part's outline there (a neighbour free). The slicer fills its grid cells up to the part eroded
+//     by one of its pixels and keeps any sliver of a cell the part leaves free, so a column whose
+//     cell the part's side all but covers goes on down, and fills the cell again where the part
+//     recedes below; only a cell the part covers beyond its outline stops it;
 //   - a column's area at j: its pixels free of the part in object layers j - g .. j + g (g the
 //     layers within contact_distance), less xy_gap along the part's outline there;
 //   - support layers: PrusaSlicer splits each gap between contact layers into equal layers of at
@@ -114,6 +118,8 @@ class GridSupportSweep {
  private:
   void pixel_events(const SupportRaster& raster, std::vector<RawEvent>& raw, std::vector<int>& trim_begin,
                     std::vector<std::pair<int, int>>& trims, std::vector<char>& has_contact);
+  void block_events(const std::vector<int>& block_begin, const std::vector<std::pair<int, int>>& blocks,
+                    std::vector<RawEvent>& raw) const;
   void outline_events(const std::vector<int>& trim_begin, const std::vector<std::pair<int, int>>& trims,
                       std::vector<RawEvent>& raw) const;
   double first_layer(const std::vector<int>& columns, int cells_x, int offset_x, int offset_y) const;

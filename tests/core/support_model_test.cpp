@@ -138,6 +138,48 @@ TEST(SupportSweep, EqualsTheBruteForceSweepAtEveryPhase) {
   }
 }
 
+// A raster by hand: 3 × 3 cells of 4 pixels (0.5 mm), an overhang over the centre pixel (5, 5) at
+// z = 10, and a block of the part from z = 4 to 6 over pixels [lo, hi]² (nothing else).
+SupportRaster column_over_a_block(int lo, int hi) {
+  SupportRaster r;
+  r.grid.pixel = 0.5;
+  r.grid.nx = r.grid.ny = 12;
+  r.span_begin.push_back(0);
+  for (int p = 0; p < r.grid.count(); ++p) {
+    const int i = p % 12, j = p / 12;
+    if (lo <= i && i <= hi && lo <= j && j <= hi) r.spans.push_back({4.0, 6.0});
+    r.span_begin.push_back(static_cast<int>(r.spans.size()));
+  }
+  r.overhangs.push_back({5 + 12 * 5, 49, 49, false});
+  return r;
+}
+
+TEST(SupportSweep, AColumnGoesOnPastThePartsSideAndStopsInsideIt) {
+  SlicerLayers layers;
+  layers.count = 60;
+  GridSweepSettings settings;
+  // The block covers the centre cell exactly: its outline pixels have free neighbours in the cells
+  // around it, so the column goes on down through it to the plate, as the slicer's does (it keeps
+  // the sliver the part's side leaves) ...
+  const SupportRaster side = column_over_a_block(4, 7);
+  const GridSweepResult past = GridSupportSweep(side, layers, settings).run(0, 0);
+  EXPECT_GT(past.first_layer, 0.0);
+  EXPECT_EQ(past.layer[19], 0.0);  // no free pixel inside the block: no area
+  EXPECT_GT(past.layer[10], 0.0);  // free again below it: the whole cell
+  // ... a pixel wider all round, it covers the cell beyond its outline, and the column lands on it.
+  const SupportRaster inside = column_over_a_block(3, 8);
+  const GridSweepResult landed = GridSupportSweep(inside, layers, settings).run(0, 0);
+  EXPECT_EQ(landed.first_layer, 0.0);
+  EXPECT_EQ(landed.layer[10], 0.0);
+  EXPECT_DOUBLE_EQ(landed.landing_area, 16 * 0.25);  // the cell's 16 pixels
+  for (const SupportRaster* r : {&side, &inside}) {
+    const GridSweepResult got = GridSupportSweep(*r, layers, settings).run(0, 0);
+    const GridSweepResult want = test::reference_sweep(*r, layers, settings, 0, 0);
+    EXPECT_NEAR(got.total(), want.total(), 1e-9 * want.total());
+    EXPECT_NEAR(got.column_volume, want.column_volume, 1e-9 * want.column_volume);
+  }
+}
+
 TEST(SupportModel, ZeroForPartsWithoutOverhangs) {
   EXPECT_EQ(volume(test::box({0, 0, 0}, {20, 10, 30})), 0.0);
   EXPECT_EQ(volume(test::printable_mushroom()), 0.0);

@@ -63,10 +63,11 @@ bool reference_overlaps(const PixelGrid& g, int pixel, const Vec2& a, const Vec2
 
 namespace {
 
-// Per pixel and layer: filled by the part at the layer's slice, trimmed, blocked, a top, a contact.
+// Per pixel and layer: filled by the part at the layer's slice, trimmed, blocked (filled here or
+// just above), stopping a column (blocked, and so are its four neighbours), a top, a contact.
 struct Voxels {
   int n = 0, layers = 0;
-  std::vector<char> solid, trim, block, top, contact, dense;
+  std::vector<char> solid, trim, block, stop, top, contact, dense;
   char& at(std::vector<char>& v, int p, int k) { return v[static_cast<size_t>(p) * layers + k]; }
 };
 
@@ -74,7 +75,7 @@ Voxels voxels(const SupportRaster& r, const SlicerLayers& L, const GridSweepSett
   Voxels v;
   v.n = r.grid.count();
   v.layers = L.count;
-  for (auto* a : {&v.solid, &v.trim, &v.block, &v.top, &v.contact, &v.dense}) a->assign(static_cast<size_t>(v.n) * L.count, 0);
+  for (auto* a : {&v.solid, &v.trim, &v.block, &v.stop, &v.top, &v.contact, &v.dense}) a->assign(static_cast<size_t>(v.n) * L.count, 0);
   const int reach = static_cast<int>(std::ceil(s.contact_distance / L.height - 1e-9));
   for (int p = 0; p < v.n; ++p)
     for (int k = 0; k < L.count; ++k)
@@ -86,6 +87,14 @@ Voxels voxels(const SupportRaster& r, const SlicerLayers& L, const GridSweepSett
       v.at(v.block, p, j) = v.at(v.solid, p, j) || (j + 1 < L.count && v.at(v.solid, p, j + 1));
       v.at(v.top, p, j) = v.at(v.solid, p, j) && !(j + 1 < L.count && v.at(v.solid, p, j + 1));
     }
+  }
+  const int nx = r.grid.nx, ny = r.grid.ny;
+  for (int p = 0; p < v.n; ++p) {
+    const int i = p % nx, row = p / nx;
+    if (i == 0 || row == 0 || i + 1 == nx || row + 1 == ny) continue;  // beyond the raster is free
+    for (int j = 0; j < L.count; ++j)
+      v.at(v.stop, p, j) = v.at(v.block, p, j) && v.at(v.block, p - 1, j) && v.at(v.block, p + 1, j) &&
+                           v.at(v.block, p - nx, j) && v.at(v.block, p + nx, j);
   }
   auto contact_layer = [&](int k) {
     int j = -1;
@@ -245,7 +254,7 @@ GridSweepResult reference_sweep(const SupportRaster& r, const SlicerLayers& L, c
       for (int p : ph.members[c]) {
         contact |= v.at(v.contact, p, j) != 0;
         has_dense |= v.at(v.dense, p, j) != 0;
-        pass |= !v.at(v.block, p, j);
+        pass |= !v.at(v.stop, p, j);
         tops += v.at(v.top, p, j);
       }
       if (above[c]) {
