@@ -34,17 +34,13 @@
 // Feasibility tolerance: a point is feasible when n_i·p + tau >= -kMinRotationFeasibilityTolerance
 // for every i. It absorbs rounding in the computed crossings and lets boundary-thin regions count.
 //
-// Complexity (n normals, after dropping zero ones):
+// Complexity (n normals, after dropping zero ones and near repeats; nearest_feasible_point.h):
 //  * The n boundary-circle points: O(n log n), feasibility checked nearest first with early exit.
-//  * Crossings, n >= 24: only the circle pairs that are edges of the convex hull of the normals
-//    (the spherical Delaunay triangulation of the cap centres; see min_rotation.cpp for why no
-//    other pair can cross at a feasible point). Hull O(n log n) expected, O(n) edges; each
-//    crossing is first tested in O(1) against the two hull vertices facing its edge, and only
-//    the few that pass get the full O(n) check. In practice O(n log n).
-//  * Crossings, n < 24, or a hull that is numerically degenerate (normals a few ulps apart, four
-//    nearly co-circular normals, all normals on one circle): all O(n²) pairs, screened by an
-//    arithmetic-only test against the best point so far; survivors get the full check with
-//    early exit, the last violated constraint first. O(n²) in practice, O(n³) worst case.
+//  * Crossings, n < 24: all O(n²) pairs, screened by arithmetic against the best point so far.
+//  * Crossings, n >= 24: only the circle pairs that are edges of the convex hull of the normals.
+//    In practice O(n log n). Where that hull is numerically degenerate (normals a few ulps apart,
+//    four nearly co-circular normals: a scan's tight cluster), an active set: a few constraints at
+//    a time, each answer checked against all, O(n) a round.
 // Measured (bench/min_rotation_bench.cpp): about 2 µs at n = 16 and 0.1-0.15 ms at n = 256.
 // Memory O(n).
 #pragma once

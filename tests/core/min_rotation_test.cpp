@@ -58,7 +58,7 @@ void expect_safe(const MinRotation& r, const Eigen::Matrix3Xd& normals, const Ei
   }
 }
 
-enum class Mix { Uniform, AroundDown, Groups, AntipodalPairs, NearDuplicates };
+enum class Mix { Uniform, AroundDown, Groups, AntipodalPairs, NearDuplicates, TightCluster };
 
 // A random risky-looking patch: around a downward direction within 60° of -d.
 Eigen::Matrix3Xd around_down(std::mt19937& rng, int n, const Eigen::Vector3d& d) {
@@ -85,6 +85,10 @@ Eigen::Matrix3Xd random_normals(std::mt19937& rng, Mix mix, int n, const Eigen::
       Eigen::Matrix3Xd normals = around_down(rng, n, d);
       for (int p = 0; p < pairs; ++p) normals.col(n - 1 - p) = -normals.col(p);
       return normals;
+    }
+    case Mix::TightCluster: {  // a scan's tet: a hundred normals or more within a degree or two
+      std::uniform_real_distribution<double> spread(0.1 * kDeg, 2.0 * kDeg);
+      return random_normals_in_cap(rng, n, random_in_cap(rng, -d, 60 * kDeg), spread(rng));
     }
     case Mix::NearDuplicates: {  // exact copies and copies moved by 1e-12..1e-6 radians
       Eigen::Matrix3Xd normals = around_down(rng, n, d);
@@ -168,6 +172,13 @@ TEST(MinRotationExact, PlantedAntipodalPairs) {
 TEST(MinRotationExact, NearDuplicates) {
   const SweepCount seen = sweep(Mix::NearDuplicates, scaled(4000), 1, 100, 505);
   EXPECT_GT(seen.feasible, 2000);
+}
+
+// Where the hull of the normals cannot be trusted (nearly co-circular ones in a tight cluster),
+// the answer comes from a few of them at a time (an active set), checked against all.
+TEST(MinRotationExact, TightClustersOfAScansTet) {
+  const SweepCount seen = sweep(Mix::TightCluster, scaled(300), 24, 400, 707);
+  EXPECT_GT(seen.feasible, 250);
 }
 
 TEST(MinRotationExact, LargePatches) {
