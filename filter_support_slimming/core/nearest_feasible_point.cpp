@@ -22,6 +22,10 @@ constexpr Eigen::Index kHullFrom = 24;  // measured crossover
 // at d) and the most it adds a round (those most violated at its answer).
 constexpr Eigen::Index kActiveSetStart = 16;
 constexpr size_t kActiveSetStep = 8;
+// Rounds of the active set tried before the hull: a patch of one surface (normals within a few
+// tens of degrees) is settled in one or two; a wide one (normals all round the lower hemisphere)
+// takes many, and the hull does it faster.
+constexpr int kActiveSetFirstRounds = 3;
 // Below this length a tangent direction is rounding noise and the tie-break direction is used.
 constexpr double kTinyTangent = 1e-14;
 
@@ -40,10 +44,10 @@ class NearestFeasiblePoint {
                        const Eigen::Vector3d& tie, double tie_tolerance)
       : n_(n), d_(d), tau_(tau), tie_(tie), tie_tolerance_(tie_tolerance) {}
 
-  enum class Outcome { kFound, kEmpty, kHullUntrusted };
+  enum class Outcome { kFound, kEmpty, kUndecided };
 
-  // kEmpty when H is empty. kHullUntrusted: many normals whose hull cannot be trusted, and
-  // all_pairs false: nothing found, the caller narrows the constraints (nearest_by_active_set).
+  // kEmpty when H is empty. kUndecided: many normals whose hull cannot be trusted, and all_pairs
+  // false: nothing found, the caller narrows the constraints (nearest_by_active_set).
   Outcome solve(Eigen::Vector3d& closest, bool all_pairs) {
     if (is_feasible(d_)) {
       closest = d_;
@@ -52,7 +56,7 @@ class NearestFeasiblePoint {
     if (n_.cols() >= kHullFrom) {
       offer_circle_points();
       if (!offer_hull_crossings()) {
-        if (!all_pairs) return Outcome::kHullUntrusted;
+        if (!all_pairs) return Outcome::kUndecided;
         offer_all_pair_crossings();
       }
     } else {
@@ -294,12 +298,12 @@ class NearestFeasiblePoint {
   double screen_ = -2.0;            // below every cos(angle): screens nothing yet
 };
 
-// The nearest point of H by an active set, for many normals whose hull cannot be trusted
-// (nearest_feasible_point.h): subsets of the constraints, most violated first, until the subset's
-// answer violates none.
+// The nearest point of H by an active set (nearest_feasible_point.h): subsets of the constraints,
+// most violated first, until the subset's answer violates none; kUndecided (undecided) after
+// max_rounds rounds (< 0: no limit).
 NearestFeasiblePoint::Outcome nearest_by_active_set(const Eigen::Matrix3Xd& n, const Eigen::Vector3d& d, double tau,
                                                    const Eigen::Vector3d& tie, double tie_tolerance,
-                                                   Eigen::Vector3d& closest) {
+                                                   Eigen::Vector3d& closest, int max_rounds) {
   const Eigen::Index m = n.cols();
   std::vector<Eigen::Index> order(static_cast<size_t>(m));
   for (Eigen::Index i = 0; i < m; ++i) order[static_cast<size_t>(i)] = i;
@@ -309,7 +313,8 @@ NearestFeasiblePoint::Outcome nearest_by_active_set(const Eigen::Matrix3Xd& n, c
   for (Eigen::Index i = 0; i < std::min(kActiveSetStart, m); ++i) chosen[static_cast<size_t>(order[static_cast<size_t>(i)])] = 1;
   const double bound = -tau - kMinRotationFeasibilityTolerance;
   std::vector<std::pair<double, Eigen::Index>> violated;
-  for (;;) {
+  for (int round = 0;; ++round) {
+    if (round == max_rounds) return NearestFeasiblePoint::Outcome::kUndecided;
     // The subset in the normals' own order, so that ties fall as they would among them.
     Eigen::Matrix3Xd subset(3, std::count(chosen.begin(), chosen.end(), 1));
     for (Eigen::Index i = 0, k = 0; i < m; ++i)
@@ -335,10 +340,15 @@ NearestFeasiblePoint::Outcome nearest_by_active_set(const Eigen::Matrix3Xd& n, c
 
 bool nearest_feasible_point(const Eigen::Matrix3Xd& normals, const Eigen::Vector3d& d, double tau,
                             const Eigen::Vector3d& tie, double tie_tolerance, Eigen::Vector3d& closest) {
-  NearestFeasiblePoint solver(normals, d, tau, tie, tie_tolerance);
-  NearestFeasiblePoint::Outcome outcome = solver.solve(closest, false);
-  if (outcome == NearestFeasiblePoint::Outcome::kHullUntrusted)
-    outcome = nearest_by_active_set(normals, d, tau, tie, tie_tolerance, closest);
+  NearestFeasiblePoint::Outcome outcome = NearestFeasiblePoint::Outcome::kUndecided;
+  if (normals.cols() >= kHullFrom)
+    outcome = nearest_by_active_set(normals, d, tau, tie, tie_tolerance, closest, kActiveSetFirstRounds);
+  if (outcome == NearestFeasiblePoint::Outcome::kUndecided) {
+    NearestFeasiblePoint solver(normals, d, tau, tie, tie_tolerance);
+    outcome = solver.solve(closest, false);
+  }
+  if (outcome == NearestFeasiblePoint::Outcome::kUndecided)
+    outcome = nearest_by_active_set(normals, d, tau, tie, tie_tolerance, closest, -1);
   return outcome == NearestFeasiblePoint::Outcome::kFound;
 }
 

@@ -18,15 +18,18 @@
 // to d, crossings of two circles), nearest first, each checked against every constraint.
 //  * Fewer than 24 normals: all pairs of circles, screened by arithmetic alone against the best
 //    point so far. O(m²) in practice.
-//  * More: only the pairs that are edges of the normals' convex hull can cross at a feasible point
-//    (nearest_feasible_point.cpp says why). Hull O(m log m) expected, O(m) edges.
-//  * More, and a hull too nearly degenerate to trust (normals a few ulps apart, four nearly
-//    co-circular ones: a scan's tet, a tight cluster of a hundred or more): an active set. H grows
-//    when constraints are left out, so the answer on a subset is at least as near as the whole
-//    set's, and is the whole set's when it violates none of them; and if a subset leaves no
-//    region, the whole set leaves none. Start from the 16 constraints most violated at d, solve on
-//    them, add the 8 the answer violates most, repeat. Each round is one O(m) check; two
-//    constraints fix an answer, so the subsets stay small. (Before: all O(m²) pairs.)
+//  * More: first an active set. H grows when constraints are left out, so the answer on a subset
+//    is at least as near as the whole set's, and is the whole set's when it violates none of them;
+//    and if a subset leaves no region, the whole set leaves none. Start from the 16 constraints
+//    most violated at d, solve on them, add the 8 the answer violates most, repeat: each round is
+//    one O(m) check, and two constraints fix an answer. A patch of one surface (normals within a
+//    few tens of degrees) is settled in a round or two. After 3 rounds undecided (a wide patch,
+//    normals all round the lower hemisphere), the hull:
+//  * only the pairs that are edges of the normals' convex hull can cross at a feasible point
+//    (nearest_feasible_point.cpp says why): hull O(m log m) expected, O(m) edges;
+//  * and where that hull is too nearly degenerate to trust (normals a few ulps apart, four nearly
+//    co-circular ones: a scan's tet, a tight cluster of a hundred or more), the active set again,
+//    without a limit on rounds. (Before: all O(m²) pairs.)
 // Measured (bench/min_rotation_bench.cpp): see min_rotation.h.
 #pragma once
 
