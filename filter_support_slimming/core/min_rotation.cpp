@@ -4,12 +4,9 @@
 #include "core/nearest_feasible_point.h"
 
 #include <Eigen/Geometry>
-#include <algorithm>
-#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace slim {
@@ -18,8 +15,6 @@ namespace {
 
 // Normals and d may come from float data: a little off unit length is accepted and renormalised.
 constexpr double kUnitTolerance = 1e-6;
-// Below this length a tangent direction is rounding noise and the tie-break direction is used.
-constexpr double kTinyTangent = 1e-14;
 
 void check_inputs(const Eigen::Matrix3Xd& normals, const Eigen::Vector3d& d, double tau,
                   const MinRotationOptions& options) {

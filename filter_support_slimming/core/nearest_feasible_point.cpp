@@ -26,8 +26,6 @@ constexpr size_t kActiveSetStep = 8;
 // tens of degrees) is settled in one or two; a wide one (normals all round the lower hemisphere)
 // takes many, and the hull does it faster.
 constexpr int kActiveSetFirstRounds = 3;
-// Below this length a tangent direction is rounding noise and the tie-break direction is used.
-constexpr double kTinyTangent = 1e-14;
 
 // Why only hull edges can cross at a feasible point: at a feasible crossing p of circles i and j,
 // the plane x·p = -tau has every normal on the side x·p >= -tau and n_i, n_j on it, so it supports
@@ -53,14 +51,10 @@ class NearestFeasiblePoint {
       closest = d_;
       return Outcome::kFound;
     }
-    if (n_.cols() >= kHullFrom) {
-      offer_circle_points();
-      if (!offer_hull_crossings()) {
-        if (!all_pairs) return Outcome::kUndecided;
-        offer_all_pair_crossings();
-      }
-    } else {
-      offer_circle_points();
+    offer_circle_points();
+    const bool many = n_.cols() >= kHullFrom;
+    if (!many || !offer_hull_crossings()) {
+      if (many && !all_pairs) return Outcome::kUndecided;
       offer_all_pair_crossings();
     }
     if (kept_.empty()) return Outcome::kEmpty;
@@ -299,57 +293,69 @@ class NearestFeasiblePoint {
 };
 
 // The nearest point of H by an active set (nearest_feasible_point.h): subsets of the constraints,
-// most violated first, until the subset's answer violates none; kUndecided (undecided) after
-// max_rounds rounds (< 0: no limit).
-NearestFeasiblePoint::Outcome nearest_by_active_set(const Eigen::Matrix3Xd& n, const Eigen::Vector3d& d, double tau,
-                                                   const Eigen::Vector3d& tie, double tie_tolerance,
-                                                   Eigen::Vector3d& closest, int max_rounds) {
-  const Eigen::Index m = n.cols();
-  std::vector<Eigen::Index> order(static_cast<size_t>(m));
-  for (Eigen::Index i = 0; i < m; ++i) order[static_cast<size_t>(i)] = i;
-  const Eigen::RowVectorXd at_d = d.transpose() * n;
-  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) { return at_d(a) < at_d(b); });
-  std::vector<char> chosen(static_cast<size_t>(m), 0);
-  for (Eigen::Index i = 0; i < std::min(kActiveSetStart, m); ++i) chosen[static_cast<size_t>(order[static_cast<size_t>(i)])] = 1;
-  const double bound = -tau - kMinRotationFeasibilityTolerance;
-  std::vector<std::pair<double, Eigen::Index>> violated;
-  for (int round = 0;; ++round) {
-    if (round == max_rounds) return NearestFeasiblePoint::Outcome::kUndecided;
-    // The subset in the normals' own order, so that ties fall as they would among them.
-    Eigen::Matrix3Xd subset(3, std::count(chosen.begin(), chosen.end(), 1));
-    for (Eigen::Index i = 0, k = 0; i < m; ++i)
-      if (chosen[static_cast<size_t>(i)]) subset.col(k++) = n.col(i);
-    Eigen::Vector3d p;
-    NearestFeasiblePoint solver(subset, d, tau, tie, tie_tolerance);
-    if (solver.solve(p, true) == NearestFeasiblePoint::Outcome::kEmpty) return NearestFeasiblePoint::Outcome::kEmpty;
-    violated.clear();
-    const Eigen::RowVectorXd at_p = p.transpose() * n;
-    for (Eigen::Index i = 0; i < m; ++i)
-      if (at_p(i) < bound) violated.push_back({at_p(i), i});
-    if (violated.empty()) {
-      closest = p;
-      return NearestFeasiblePoint::Outcome::kFound;
-    }
-    const size_t added = std::min(violated.size(), static_cast<size_t>(kActiveSetStep));
-    std::partial_sort(violated.begin(), violated.begin() + static_cast<std::ptrdiff_t>(added), violated.end());
-    for (size_t k = 0; k < added; ++k) chosen[static_cast<size_t>(violated[k].second)] = 1;
+// most violated first, until the subset's answer violates none. run() goes on from where the last
+// call stopped.
+class ActiveSet {
+ public:
+  ActiveSet(const Eigen::Matrix3Xd& n, const Eigen::Vector3d& d, double tau, const Eigen::Vector3d& tie,
+            double tie_tolerance)
+      : n_(n), d_(d), tau_(tau), tie_(tie), tie_tolerance_(tie_tolerance), chosen_(static_cast<size_t>(n.cols()), 0) {
+    // The kActiveSetStart most violated at d, ties to the first.
+    std::vector<std::pair<double, Eigen::Index>> at_d(static_cast<size_t>(n.cols()));
+    for (Eigen::Index i = 0; i < n.cols(); ++i) at_d[static_cast<size_t>(i)] = {d.dot(n.col(i)), i};
+    const auto first = at_d.begin() + std::min(kActiveSetStart, n.cols());
+    std::partial_sort(at_d.begin(), first, at_d.end());
+    for (auto it = at_d.begin(); it != first; ++it) chosen_[static_cast<size_t>(it->second)] = 1;
   }
-}
+
+  // kUndecided after max_rounds rounds (< 0: no limit).
+  NearestFeasiblePoint::Outcome run(int max_rounds, Eigen::Vector3d& closest) {
+    const Eigen::Index m = n_.cols();
+    const double bound = -tau_ - kMinRotationFeasibilityTolerance;
+    for (int round = 0; round != max_rounds; ++round) {
+      // The subset in the normals' own order, so that ties fall as they would among them.
+      Eigen::Matrix3Xd subset(3, std::count(chosen_.begin(), chosen_.end(), 1));
+      for (Eigen::Index i = 0, k = 0; i < m; ++i)
+        if (chosen_[static_cast<size_t>(i)]) subset.col(k++) = n_.col(i);
+      Eigen::Vector3d p;
+      NearestFeasiblePoint solver(subset, d_, tau_, tie_, tie_tolerance_);
+      if (solver.solve(p, true) == NearestFeasiblePoint::Outcome::kEmpty) return NearestFeasiblePoint::Outcome::kEmpty;
+      violated_.clear();
+      const Eigen::RowVectorXd at_p = p.transpose() * n_;
+      for (Eigen::Index i = 0; i < m; ++i)
+        if (at_p(i) < bound) violated_.push_back({at_p(i), i});
+      if (violated_.empty()) {
+        closest = p;
+        return NearestFeasiblePoint::Outcome::kFound;
+      }
+      const size_t added = std::min(violated_.size(), kActiveSetStep);
+      std::partial_sort(violated_.begin(), violated_.begin() + static_cast<std::ptrdiff_t>(added), violated_.end());
+      for (size_t k = 0; k < added; ++k) chosen_[static_cast<size_t>(violated_[k].second)] = 1;
+    }
+    return NearestFeasiblePoint::Outcome::kUndecided;
+  }
+
+ private:
+  const Eigen::Matrix3Xd& n_;
+  const Eigen::Vector3d d_;
+  const double tau_;
+  const Eigen::Vector3d tie_;
+  const double tie_tolerance_;
+  std::vector<char> chosen_;                                // per constraint: in the subset
+  std::vector<std::pair<double, Eigen::Index>> violated_;  // (n·p, constraint) at the last answer
+};
 
 }  // namespace
 
 bool nearest_feasible_point(const Eigen::Matrix3Xd& normals, const Eigen::Vector3d& d, double tau,
                             const Eigen::Vector3d& tie, double tie_tolerance, Eigen::Vector3d& closest) {
-  NearestFeasiblePoint::Outcome outcome = NearestFeasiblePoint::Outcome::kUndecided;
-  if (normals.cols() >= kHullFrom)
-    outcome = nearest_by_active_set(normals, d, tau, tie, tie_tolerance, closest, kActiveSetFirstRounds);
-  if (outcome == NearestFeasiblePoint::Outcome::kUndecided) {
-    NearestFeasiblePoint solver(normals, d, tau, tie, tie_tolerance);
-    outcome = solver.solve(closest, false);
-  }
-  if (outcome == NearestFeasiblePoint::Outcome::kUndecided)
-    outcome = nearest_by_active_set(normals, d, tau, tie, tie_tolerance, closest, -1);
-  return outcome == NearestFeasiblePoint::Outcome::kFound;
+  using Outcome = NearestFeasiblePoint::Outcome;
+  if (normals.cols() < kHullFrom) return NearestFeasiblePoint(normals, d, tau, tie, tie_tolerance).solve(closest, true) == Outcome::kFound;
+  ActiveSet active(normals, d, tau, tie, tie_tolerance);
+  Outcome outcome = active.run(kActiveSetFirstRounds, closest);
+  if (outcome == Outcome::kUndecided) outcome = NearestFeasiblePoint(normals, d, tau, tie, tie_tolerance).solve(closest, false);
+  if (outcome == Outcome::kUndecided) outcome = active.run(-1, closest);
+  return outcome == Outcome::kFound;
 }
 
 }  // namespace slim

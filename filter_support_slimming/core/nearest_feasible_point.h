@@ -37,6 +37,10 @@
 
 namespace slim {
 
+// Below this length a tangent direction at d is rounding noise and the tie-break direction is used
+// (here and in min_rotation's rotation_onto).
+inline constexpr double kTinyTangent = 1e-14;
+
 bool nearest_feasible_point(const Eigen::Matrix3Xd& normals, const Eigen::Vector3d& d, double tau,
                             const Eigen::Vector3d& tie, double tie_tolerance, Eigen::Vector3d& closest);
 

@@ -151,6 +151,10 @@ Surface open_hemisphere(int levels, double r, bool lower) {
   return compacted(full, kept);
 }
 
+Surface slab_on_stem(double width, double z) {
+  return merge(box({-2, -2, 0}, {2, 2, z + 1}), box({-width / 2, -width / 2, z}, {width / 2, width / 2, z + 2}));
+}
+
 Surface box_with_windows(double width, int windows) {
   const Surface full = refined(box({-10, -10, 0}, {10, 10, 20}), 4);
   std::vector<Eigen::Vector3i> kept;

@@ -20,6 +20,10 @@ Surface merge(const Surface& a, const Surface& b);
 // touching shapes share their vertices.
 Surface weld(const Surface& s);
 
+// A slab [-w/2, w/2]² × [z, z + 2] on a 4 × 4 stem from the plate (the stem reaches into it): two
+// boxes, merged.
+Surface slab_on_stem(double width, double z);
+
 // A T: a stem [-s/2,s/2]^2 x [0,h] and a bar of length L, width s, thickness t on top of it,
 // built as one closed manifold (no internal faces). Risky area at any alpha < 90: the two arm
 // undersides, 2 * (L - s)/2 * s = (L - s) * s.
