@@ -37,6 +37,9 @@ options:
   --max-creases PCT        never return a result whose creases (edges whose dihedral angle
                            changed by more than 10 deg) exceed PCT % of the edge length;
                            0: no limit; the paper's method has none                  [2.5]
+  --min-saving PCT         return the input unchanged unless the support model finds a result
+                           needing at least PCT % less support; 0: any saving; the paper's
+                           method chooses by the shadow volume and has none            [3]
   --features FILE          rigid features: a text file of face ids (0-based)
   --features-from-mesh     rigid features: the faces selected in IN (PLY face flags)
   --orient                 first turn the part into the print pose that needs the least support
@@ -101,7 +104,7 @@ std::vector<bool> read_face_ids(const std::string& path, long long faces) {
 CliOptions parse_arguments(const std::vector<std::string>& args) {
   CliOptions c;
   SlimmingOptions& o = c.slimming;
-  bool dir_given = false, creases_given = false;
+  bool dir_given = false, creases_given = false, saving_given = false;
   auto value = [&](size_t& i) -> const std::string& {
     if (i + 1 >= args.size()) die(args[i] + " needs a value");
     return args[++i];
@@ -130,6 +133,7 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
     else if (a == "--max-deviation") o.max_deviation_pct = number(a, value(i));
     else if (a == "--max-k") o.max_k = integer(a, value(i));
     else if (a == "--max-creases") o.coherence.max_crease_share_pct = number(a, value(i)), creases_given = true;
+    else if (a == "--min-saving") o.coherence.min_support_saving_pct = number(a, value(i)), saving_given = true;
     else if (a == "--features") c.features_file = value(i);
     else if (a == "--features-from-mesh") c.features_from_mesh = true;
     else if (a == "--orient") c.orient = true;
@@ -153,6 +157,8 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
   if (!c.oriented_out.empty() && !c.orient) die("--oriented-output needs --orient");
   if (creases_given && o.method == SlimmingMethod::Paper)
     die("--max-creases limits the coherent method; the paper's method has no crease limit");
+  if (saving_given && o.method == SlimmingMethod::Paper)
+    die("--min-saving sets the coherent method's least saving; the paper's method has none");
 
   return c;
 }

@@ -11,12 +11,16 @@
 // the result. (Bending a T's arms or a mushroom's rim can shrink the risky area while the
 // overhangs left move higher and need more support; and the slicer closes small gaps in an
 // overhang's footprint, so cutting risky area can save nothing: the support decides.)
-// An iterate whose crease share exceeds max_crease_share_pct (when > 0) never qualifies either.
-// In: the input's statistics (iteration 0) and the crease limit (%), then each iterate's
-// (risky_area mm², support_estimate or shadow_volume mm³, crease_share_pct, which only the
-// iterates reads_creases() names need). Out: offer() is true when the iterate is the best so far.
+// An iterate whose crease share exceeds max_crease_share_pct (when > 0) never qualifies either,
+// and by the support model neither does one that saves less than min_saving_pct (%) of the
+// input's support: a saving within the model's error is not worth a change of shape.
+// In: the input's statistics (iteration 0), the crease limit and the least saving (%), then each
+// iterate's (risky_area mm², support_estimate or shadow_volume mm³, crease_share_pct, which only
+// the iterates reads_creases() names need). Out: offer() is true when the iterate is the best so
+// far; best_unsaved_pct() the largest saving (%) that fell short of the least, for the report.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/slimming.h"
@@ -25,9 +29,12 @@ namespace slim {
 
 class IterateChoice {
  public:
-  explicit IterateChoice(const IterationStats& input, double max_crease_share_pct = 0.0)
+  explicit IterateChoice(const IterationStats& input, double max_crease_share_pct = 0.0, double min_saving_pct = 0.0)
       : by_model_(input.support_estimate > 0.0), max_crease_(max_crease_share_pct), input_risky_(input.risky_area),
-        best_support_(support(input)), best_risky_(input.risky_area) {}
+        input_support_(support(input)), best_support_(input_support_), best_risky_(input.risky_area) {
+    // By the model an iterate must beat the input by the least saving: it starts as the bar.
+    if (by_model_ && min_saving_pct > 0.0) best_support_ *= 1.0 - min_saving_pct / 100.0;
+  }
 
   bool offer(const IterationStats& s) {
     // An iterate the model could not measure (NaN) never qualifies.
@@ -35,6 +42,7 @@ class IterateChoice {
     const bool qualifies = s.risky_area <= input_risky_ && !(by_model_ && std::isnan(s.support_estimate)) && !creased;
     const double need = support(s);
     if (creased && need < best_support_) ++passed_over_;
+    if (qualifies && need < input_support_) best_unsaved_ = std::max(best_unsaved_, 100.0 * (1.0 - need / input_support_));
     if (!qualifies || !(need < best_support_ || (need == best_support_ && s.risky_area <= best_risky_))) return false;
     best_support_ = need;
     best_risky_ = s.risky_area;
@@ -48,13 +56,18 @@ class IterateChoice {
   // Iterates that needed less support than the best so far but creased past the limit.
   int passed_over() const { return passed_over_; }
 
+  // The largest saving (% of the input's support) of an iterate that qualified but for the least
+  // saving; 0 when none saved anything. Read when no iterate was chosen.
+  double best_unsaved_pct() const { return best_unsaved_; }
+
  private:
   double support(const IterationStats& s) const { return by_model_ ? s.support_estimate : s.shadow_volume; }
 
   bool by_model_;
   double max_crease_;
   int passed_over_ = 0;
-  double input_risky_, best_support_, best_risky_;
+  double input_risky_, input_support_, best_support_, best_risky_;
+  double best_unsaved_ = 0.0;
 };
 
 }  // namespace slim

@@ -38,6 +38,8 @@ void validate_coherence(const CoherenceOptions& c) {
     throw std::invalid_argument("the coherent rotation step cap must be in (0, 180] degrees");
   if (!(c.max_crease_share_pct >= 0.0 && c.max_crease_share_pct <= 100.0))
     throw std::invalid_argument("the crease share limit must be in [0, 100] % (0: no limit)");
+  if (!(c.min_support_saving_pct >= 0.0 && c.min_support_saving_pct < 100.0))
+    throw std::invalid_argument("the least support saving must be in [0, 100) % (0: any saving)");
 }
 
 void validate_options(const Surface& input, const SlimmingOptions& o) {
@@ -111,20 +113,31 @@ Support support_estimate(SupportModel* model, const Points& V, const SlimmingOpt
   }
 }
 
-// What the crease limit did, for the stop reason: "" when it turned no better iterate away.
-std::string crease_note(const IterateChoice& choice, double limit) {
-  if (choice.passed_over() == 0) return "";
-  char note[160];
-  std::snprintf(note, sizeof note, "; %d iterate%s that needed less support creased more than the limit (%.3g%% of the edge length)",
-                choice.passed_over(), choice.passed_over() == 1 ? "" : "s", limit);
-  return note;
+// What the choice of iterate did, for the stop reason: the iterates the crease limit turned away,
+// and why the input comes back when no iterate was chosen; "" when there is nothing to say.
+std::string choice_note(const IterateChoice& choice, const SlimmingOptions& o, const SlimmingResult& r) {
+  char note[400] = "";
+  if (choice.passed_over() > 0)
+    std::snprintf(note, sizeof note, "; %d iterate%s that needed less support creased more than the limit (%.3g%% of the edge length)",
+                  choice.passed_over(), choice.passed_over() == 1 ? "" : "s", coherence_of(o).max_crease_share_pct);
+  std::string why = note;
+  if (r.iterations > 0) return why;
+  const bool by_model = r.support_before_mm3 > 0.0;
+  if (by_model && choice.best_unsaved_pct() > 0.0) {
+    std::snprintf(note, sizeof note, "; the iterates needed at most %.2g%% less support than the input (support model), under the "
+                  "%.3g%% worth a change of shape, so the input is returned unchanged",
+                  choice.best_unsaved_pct(), coherence_of(o).min_support_saving_pct);
+    return why + note;
+  }
+  return why + "; no iterate needed less support than the input (" + (by_model ? "support model" : "shadow volume") +
+         "), so the input is returned unchanged";
 }
 
 // The iterations under the stopping rule; the best iterate goes into r.
 std::string iterate(SupportSlimmer& slimmer, const Surface& input, SupportModel* model, const SlimmingOptions& o,
                     const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
   const double max_crease = coherence_of(o).max_crease_share_pct;
-  IterateChoice choice(r.history.front(), max_crease);
+  IterateChoice choice(r.history.front(), max_crease, coherence_of(o).min_support_saving_pct);
   auto crease_started = std::chrono::steady_clock::now();
   const std::optional<CreaseMeter> creases = max_crease > 0.0 ? std::make_optional<CreaseMeter>(input) : std::nullopt;
   r.stage_seconds.creases += seconds_since(crease_started);
@@ -157,11 +170,11 @@ std::string iterate(SupportSlimmer& slimmer, const Surface& input, SupportModel*
       r.iterations = it;
     }
     report(0.1 + 0.9 * it / o.max_iterations, "iteration " + std::to_string(it) + ": risky area " + std::to_string(st.risky_area));
-    if (!slimmer.guard_stop().empty()) return slimmer.guard_stop() + crease_note(choice, max_crease);
+    if (!slimmer.guard_stop().empty()) return slimmer.guard_stop() + choice_note(choice, o, r);
     if (previous_deficit - st.risky_deficit < o.stall_tolerance * r.before.risky_deficit)
-      return "overhangs stopped improving" + crease_note(choice, max_crease);
+      return "overhangs stopped improving" + choice_note(choice, o, r);
   }
-  return "iteration limit reached" + crease_note(choice, max_crease);
+  return "iteration limit reached" + choice_note(choice, o, r);
 }
 
 // The run itself, on a surface whose normals point out of the part.
@@ -218,9 +231,6 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
   r.stage_seconds.local = times.local;
   r.stage_seconds.global = times.global;
   r.stage_seconds.measure = times.measure;
-  if (r.iterations == 0 && r.iterations_run > 0)
-    why += std::string("; no iterate needed less support than the input (") +
-           (r.support_before_mm3 > 0.0 ? "support model" : "shadow volume") + "), so the input is returned unchanged";
   return finish(why);
 }
 

@@ -88,8 +88,30 @@ TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheBunny) {
 TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheT) {
   expect_more_support_saved_than_by_the_paper(test::refined(test::t_shape(), 4));
 }
-TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheMushroom) {
-  expect_more_support_saved_than_by_the_paper(test::refined(test::mushroom(), 2));
+// The mushroom's flat cap bends at its rim, which saves 2-3% of its modelled support: less than
+// the least saving worth a change of shape (3%), so the input comes back bit for bit and the
+// stop reason says why. With any saving allowed the same run returns the slimmed part.
+TEST(Slimming, ASavingWithinTheModelsErrorLeavesTheInputAsItWas) {
+  const Surface mushroom = test::refined(test::mushroom(), 2);
+  const double least = CoherenceOptions{}.min_support_saving_pct;
+  for (double budget : {2.0, 5.0, 10.0}) {
+    SCOPED_TRACE("budget " + std::to_string(budget) + "%");
+    SlimmingOptions o;
+    o.max_deviation_pct = budget;
+    const SlimmingResult kept = slim_supports(mushroom, o);
+    EXPECT_EQ(kept.iterations, 0);
+    EXPECT_GT(kept.iterations_run, 0);
+    EXPECT_EQ(kept.surface.V, mushroom.V);
+    EXPECT_EQ(kept.support_after_mm3, kept.support_before_mm3);
+    EXPECT_NE(kept.stop_reason.find("% worth a change of shape, so the input is returned unchanged"), std::string::npos)
+        << kept.stop_reason;
+    o.coherence.min_support_saving_pct = 0.0;
+    const SlimmingResult any = slim_supports(mushroom, o);
+    EXPECT_GT(any.iterations, 0);
+    EXPECT_LT(any.support_after_mm3, kept.support_before_mm3);
+    EXPECT_GT(any.support_after_mm3, (1.0 - least / 100.0) * kept.support_before_mm3);
+    EXPECT_NEAR(any.support_after_mm3, modelled_support(any.surface), 1e-9 * any.support_before_mm3);
+  }
 }
 TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheArch) {
   expect_more_support_saved_than_by_the_paper(test::refined(test::arch(), 3));
@@ -176,7 +198,11 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
           if (st.risky_area <= r.before.risky_area) {
             EXPECT_GE(st.support_estimate, r.support_after_mm3) << st.iteration;
           }
-        EXPECT_LT(r.support_after_mm3, 0.98 * r.support_before_mm3);  // all four save support
+        // A result saves at least the least worth a change of shape; the mushroom's rim saves
+        // less, and it comes back unchanged (below); the others are slimmed.
+        const double least = o.coherence.min_support_saving_pct / 100.0;
+        if (r.iterations > 0) EXPECT_LE(r.support_after_mm3, (1.0 - least) * r.support_before_mm3);
+        EXPECT_EQ(r.iterations == 0, std::string(name) == "mushroom") << r.stop_reason;
       }
       EXPECT_EQ(r.history.back().inverted_tets, 0);
       EXPECT_GE(r.surface.V.col(2).minCoeff(), -1e-9);  // nothing below the plate
