@@ -83,7 +83,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   local_.set_rest(mesh);
   local_.pieces = constraint_pieces(domain_.embedding, mesh.T.rows(), before.on_plate, n0);
   local_.d = d;
-  local_.tau = std::sin(std::max(0.0, o.alpha_max_deg - o.margin_deg) * M_PI / 180.0);
+  local_.tau = std::sin(std::max(0.0, o.alpha_max_deg - margin_of(o)) * M_PI / 180.0);
   local_.max_step = max_step_of(o) * M_PI / 180.0;
   local_.edge_slack = coherence_.edge_turn_slack_deg * M_PI / 180.0;
   local_.triage = coherence_.triage_deg * M_PI / 180.0;

@@ -36,6 +36,7 @@ void validate_coherence(const CoherenceOptions& c) {
     throw std::invalid_argument("the edge-turn slack must be in [0, 180] degrees");
   if (!(c.max_step_deg > 0.0 && c.max_step_deg <= 180.0))
     throw std::invalid_argument("the coherent rotation step cap must be in (0, 180] degrees");
+  if (!(c.margin_deg >= 0.0 && c.margin_deg < 45.0)) throw std::invalid_argument("the coherent angular margin must be in [0, 45) degrees");
   if (!(c.max_crease_share_pct >= 0.0 && c.max_crease_share_pct <= 100.0))
     throw std::invalid_argument("the crease share limit must be in [0, 100] % (0: no limit)");
   if (!(c.min_support_saving_pct >= 0.0 && c.min_support_saving_pct < 100.0))
@@ -46,7 +47,7 @@ void validate_options(const Surface& input, const SlimmingOptions& o) {
   if (o.max_iterations < 0) throw std::invalid_argument("the iteration limit must be 0 or more");
   if (o.resolution < 1) throw std::invalid_argument("the voxel resolution must be at least 1 cell");
   if (o.max_k < 1) throw std::invalid_argument("the largest number of K-means proxies must be at least 1");
-  if (!(o.margin_deg >= 0.0 && o.margin_deg < 45.0)) throw std::invalid_argument("the angular margin must be in [0, 45) degrees");
+  if (!(o.margin_deg < 45.0)) throw std::invalid_argument("the angular margin must be in [0, 45) degrees (< 0: the method's)");
   if (!(o.max_step_deg <= 180.0)) throw std::invalid_argument("the rotation step cap must be at most 180 degrees (0: the method's)");
   if (!std::isfinite(o.max_deviation_pct)) throw std::invalid_argument("the deviation budget must be a finite percentage");
   if (!std::isfinite(o.max_deviation_mm) || o.max_deviation_mm < 0.0)
