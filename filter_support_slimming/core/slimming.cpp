@@ -125,7 +125,7 @@ std::string choice_note(const IterateChoice& choice, const SlimmingOptions& o, c
   if (r.iterations > 0) return why;
   const bool by_model = r.support_before_mm3 > 0.0;
   if (by_model && choice.best_unsaved_pct() > 0.0) {
-    std::snprintf(note, sizeof note, "; the iterates needed at most %.2g%% less support than the input (support model), under the "
+    std::snprintf(note, sizeof note, "; the iterates needed at most %.3g%% less support than the input (support model), under the "
                   "%.3g%% worth a change of shape, so the input is returned unchanged",
                   choice.best_unsaved_pct(), coherence_of(o).min_support_saving_pct);
     return why + note;
