@@ -116,18 +116,18 @@ Support support_estimate(SupportModel* model, const Points& V, const SlimmingOpt
 
 // What the choice of iterate did, for the stop reason: the iterates the crease limit turned away,
 // and why the input comes back when no iterate was chosen; "" when there is nothing to say.
-std::string choice_note(const IterateChoice& choice, const SlimmingOptions& o, const SlimmingResult& r) {
+std::string choice_note(const IterateChoice& choice, const CoherenceOptions& c, const SlimmingResult& r) {
   char note[400] = "";
   if (choice.passed_over() > 0)
     std::snprintf(note, sizeof note, "; %d iterate%s that needed less support creased more than the limit (%.3g%% of the edge length)",
-                  choice.passed_over(), choice.passed_over() == 1 ? "" : "s", coherence_of(o).max_crease_share_pct);
+                  choice.passed_over(), choice.passed_over() == 1 ? "" : "s", c.max_crease_share_pct);
   std::string why = note;
   if (r.iterations > 0) return why;
   const bool by_model = r.support_before_mm3 > 0.0;
   if (by_model && choice.best_unsaved_pct() > 0.0) {
     std::snprintf(note, sizeof note, "; the iterates needed at most %.3g%% less support than the input (support model), under the "
                   "%.3g%% worth a change of shape, so the input is returned unchanged",
-                  choice.best_unsaved_pct(), coherence_of(o).min_support_saving_pct);
+                  choice.best_unsaved_pct(), c.min_support_saving_pct);
     return why + note;
   }
   return why + "; no iterate needed less support than the input (" + (by_model ? "support model" : "shadow volume") +
@@ -137,8 +137,9 @@ std::string choice_note(const IterateChoice& choice, const SlimmingOptions& o, c
 // The iterations under the stopping rule; the best iterate goes into r.
 std::string iterate(SupportSlimmer& slimmer, const Surface& input, SupportModel* model, const SlimmingOptions& o,
                     const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
-  const double max_crease = coherence_of(o).max_crease_share_pct;
-  IterateChoice choice(r.history.front(), max_crease, coherence_of(o).min_support_saving_pct);
+  const CoherenceOptions coherence = coherence_of(o);
+  const double max_crease = coherence.max_crease_share_pct;
+  IterateChoice choice(r.history.front(), max_crease, coherence.min_support_saving_pct);
   auto crease_started = std::chrono::steady_clock::now();
   const std::optional<CreaseMeter> creases = max_crease > 0.0 ? std::make_optional<CreaseMeter>(input) : std::nullopt;
   r.stage_seconds.creases += seconds_since(crease_started);
@@ -171,11 +172,11 @@ std::string iterate(SupportSlimmer& slimmer, const Surface& input, SupportModel*
       r.iterations = it;
     }
     report(0.1 + 0.9 * it / o.max_iterations, "iteration " + std::to_string(it) + ": risky area " + std::to_string(st.risky_area));
-    if (!slimmer.guard_stop().empty()) return slimmer.guard_stop() + choice_note(choice, o, r);
+    if (!slimmer.guard_stop().empty()) return slimmer.guard_stop() + choice_note(choice, coherence, r);
     if (previous_deficit - st.risky_deficit < o.stall_tolerance * r.before.risky_deficit)
-      return "overhangs stopped improving" + choice_note(choice, o, r);
+      return "overhangs stopped improving" + choice_note(choice, coherence, r);
   }
-  return "iteration limit reached" + choice_note(choice, o, r);
+  return "iteration limit reached" + choice_note(choice, coherence, r);
 }
 
 // The run itself, on a surface whose normals point out of the part.

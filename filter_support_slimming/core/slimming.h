@@ -111,9 +111,10 @@ struct CoherenceOptions {
   // The least saving worth a change of shape: when no iterate needs at least this share (%) less
   // support than the input by the support model, the input is returned unchanged; 0 = any saving.
   // A smaller predicted saving lies within the model's error against the slicer (2.6 points on
-  // average over the corpus's organic models, at its grid phase), and the slicers found none there: the T, Suzanne and OpenSCAD's
-  // example017, predicted 1.7-2.5%, got -0.5% to +2.7% from PrusaSlicer and up to +3.7% from Cura
-  // (docs/slicer-frontier.md). Read only when the support model chooses.
+  // average over the corpus's organic models, at its grid phase), and the slicers found none
+  // there: the T, Suzanne and OpenSCAD's example017, predicted 1.7-2.5%, got -0.5% to +2.7% from
+  // PrusaSlicer and up to +3.7% from Cura (docs/slicer-frontier.md). Read only when the support
+  // model chooses.
   double min_support_saving_pct = 3.0;
 
   static CoherenceOptions none() {

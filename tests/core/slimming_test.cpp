@@ -230,7 +230,9 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
         // A result saves at least the least worth a change of shape; the mushroom's rim saves
         // less, and it comes back unchanged (below); the others are slimmed.
         const double least = o.coherence.min_support_saving_pct / 100.0;
-        if (r.iterations > 0) EXPECT_LE(r.support_after_mm3, (1.0 - least) * r.support_before_mm3);
+        if (r.iterations > 0) {
+          EXPECT_LE(r.support_after_mm3, (1.0 - least) * r.support_before_mm3);
+        }
         EXPECT_EQ(r.iterations == 0, std::string(name) == "mushroom") << r.stop_reason;
       }
       EXPECT_EQ(r.history.back().inverted_tets, 0);
