@@ -124,13 +124,15 @@ std::string choice_note(const IterateChoice& choice, const CoherenceOptions& c, 
   std::string why = note;
   if (r.iterations > 0) return why;
   const bool by_model = r.support_before_mm3 > 0.0;
+  // Iterates the crease limit turned away did need less support: what follows is of the others.
+  const std::string iterates = choice.passed_over() > 0 ? "iterates within the crease limit" : "iterates";
   if (by_model && choice.best_unsaved_pct() > 0.0) {
-    std::snprintf(note, sizeof note, "; the iterates needed at most %.3g%% less support than the input (support model), under the "
+    std::snprintf(note, sizeof note, "; the %s needed at most %.3g%% less support than the input (support model), under the "
                   "%.3g%% worth a change of shape, so the input is returned unchanged",
-                  choice.best_unsaved_pct(), c.min_support_saving_pct);
+                  iterates.c_str(), choice.best_unsaved_pct(), c.min_support_saving_pct);
     return why + note;
   }
-  return why + "; no iterate needed less support than the input (" + (by_model ? "support model" : "shadow volume") +
+  return why + "; none of the " + iterates + " needed less support than the input (" + (by_model ? "support model" : "shadow volume") +
          "), so the input is returned unchanged";
 }
 
