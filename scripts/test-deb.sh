@@ -10,6 +10,7 @@
 # Every stage prints how long it took; any failure exits non-zero. Needs root.
 #
 # Usage: scripts/test-deb.sh [DEB]        (default: make it with scripts/package-deb.sh)
+#        scripts/test-deb.sh --prepare-only    make the root and install its packages, then stop
 # Environment:
 #   SLIM_BOOKWORM_ROOT   the chroot (default /var/cache/support-slimming/bookworm; ~0.9 GB)
 #   SLIM_DEBIAN_MIRROR   default: the Debian mirror this machine's apt uses
@@ -18,13 +19,19 @@ if [ "$(id -u)" -ne 0 ]; then exec sudo --preserve-env=SLIM_BOOKWORM_ROOT,SLIM_D
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 source "$here/scripts/lib/debian-chroot.sh"
 chroot_tag=deb
+root="${SLIM_BOOKWORM_ROOT:-/var/cache/support-slimming/bookworm}"
+if [ "${1:-}" = "--prepare-only" ]; then
+  chroot_setup deb bookworm "$root"
+  chroot_install meshlab xvfb xauth lintian
+  exit 0
+fi
 
 stage "making the package (scripts/package-deb.sh)"
 deb="${1:-$("$here/scripts/package-deb.sh" | tail -n 1)}"
 echo "[deb] $deb"
 stage_done
 
-chroot_setup deb bookworm "${SLIM_BOOKWORM_ROOT:-/var/cache/support-slimming/bookworm}"
+chroot_setup deb bookworm "$root"
 chroot_install meshlab xvfb xauth lintian
 chroot_overlay
 cp "$deb" "$chroot_root/tmp/"

@@ -10,7 +10,9 @@
 # stage prints how long it took; any failure exits non-zero. Needs root and data/bunny.ply
 # (scripts/setup.sh fetches it; run here when missing).
 #
-# Usage: scripts/test-meshlab2025.sh [--clean]     --clean: rebuild the plugin from scratch
+# Usage: scripts/test-meshlab2025.sh [--clean | --prepare-only]
+#   --clean: rebuild the plugin from scratch; --prepare-only: make the root, install its packages
+#   and fetch the sources, then stop
 # Environment:
 #   SLIM_FORKY_ROOT      the chroot (default /var/cache/support-slimming/forky; ~1.7 GB)
 #   SLIM_DEBIAN_MIRROR   default: the Debian mirror this machine's apt uses

@@ -10,12 +10,15 @@
 # Every stage prints how long it took; any failure exits non-zero.
 #
 # Usage: scripts/test-pymeshlab.sh [BUILD_DIR]     (default: build-pymeshlab/ in this checkout)
+#        scripts/test-pymeshlab.sh --prepare-only   make the venv (step 1), then stop
 # Environment:
 #   SLIM_PYMESHLAB_VENV     default /var/cache/support-slimming/pymeshlab-<version> when writable,
 #                           else ~/.cache/support-slimming/pymeshlab-<version>
 #   SLIM_PYMESHLAB_VERSION  default 2025.7.post1 (the release the plugin is tested with)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+prepare_only=0
+[ "${1:-}" = "--prepare-only" ] && { prepare_only=1; shift; }
 build="${1:-$here/build-pymeshlab}"
 version="${SLIM_PYMESHLAB_VERSION:-2025.7.post1}"
 cache=/var/cache/support-slimming
@@ -41,6 +44,7 @@ if ! "$venv/bin/python" -c "import importlib.metadata as m, sys; sys.exit(m.vers
 fi
 "$venv/bin/python" -c "import importlib.metadata as m; print('[pymeshlab] pymeshlab', m.version('pymeshlab'), 'numpy', m.version('numpy'))"
 stage_done
+[ "$prepare_only" = 0 ] || exit 0
 
 stage "the double-precision plugin for it (scripts/pymeshlab-plugin.sh)"
 plugin="$(PATH="$venv/bin:$PATH" "$here/scripts/pymeshlab-plugin.sh" "$build" | tail -n 1)"

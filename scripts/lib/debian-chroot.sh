@@ -185,18 +185,24 @@ deb_checks() { in_root "/src/scripts/lib/check-deb.sh '$1'"; }
 
 # The check of a MeshLab of the FilterPlugin API in its Debian release, shared by
 # scripts/test-meshlab2022.sh and scripts/test-meshlab2025.sh:
-#   meshlab_chroot_check TAG SUITE ROOT_VARIABLE DEFAULT_ROOT [--clean]
+#   meshlab_chroot_check TAG SUITE ROOT_VARIABLE DEFAULT_ROOT [--clean | --prepare-only]
 # installs the global array PACKAGES (meshlab among them) in the SUITE root (${!ROOT_VARIABLE},
 # else DEFAULT_ROOT), fetches the installed meshlab's sources into /opt/meshlab-VERSION, builds
 # this checkout (read-only at /src) for the 2022.02 API in /var/tmp/slim-build-TAG (kept, so
 # re-runs build incrementally; --clean starts afresh), runs ctest -L meshlabYYYY there (the
-# plugin harness and the GUI smoke check), and makes and checks that release's .deb. Re-runs
-# itself through sudo when not root.
+# plugin harness and the GUI smoke check), and makes and checks that release's .deb. With
+# --prepare-only it stops once the root, its packages and the sources are ready (.ci/run does that
+# in the background while the main suite runs). Re-runs itself through sudo when not root.
 meshlab_chroot_check() {
-  local tag="$1" suite="$2" root_variable="$3" default_root="$4" clean=0
+  local tag="$1" suite="$2" root_variable="$3" default_root="$4" clean=0 prepare_only=0
   shift 4
   if [ "$(id -u)" -ne 0 ]; then exec sudo --preserve-env="$root_variable,SLIM_DEBIAN_MIRROR" "$0" "$@"; fi
-  [ "${1:-}" = "--clean" ] && clean=1
+  case "${1:-}" in
+    --clean) clean=1 ;;
+    --prepare-only) prepare_only=1 ;;
+    "") ;;
+    *) echo "unknown option: $1 (expected --clean or --prepare-only)" >&2; return 2 ;;
+  esac
   local root="${!root_variable:-$default_root}"
   local build="/var/tmp/slim-build-$tag" version label
   chroot_setup "$tag" "$suite" "$root"
@@ -205,6 +211,7 @@ meshlab_chroot_check() {
   version="${version%%[+~]*}"
   label="meshlab${version:0:4}"
   chroot_meshlab_sources "/opt/meshlab-$version"
+  [ "$prepare_only" = 0 ] || return 0
 
   [ -f "$chroot_src/data/bunny.ply" ] || "$chroot_src/scripts/setup.sh"
   stage "building the plugin and its tests for MeshLab $version"
