@@ -230,8 +230,18 @@ std::vector<OrientationCandidate> exact_pool(const OrientationGeometry& g, const
   return scored;
 }
 
-// The best of the pool: the least score; among scores equal up to rounding, the direction nearest
-// +Z (the smallest turn), then the earliest in the pool. Then the best distinct others.
+// Among poses of equal score, which to prefer: the pose as given (no turn at all), then one that
+// rests a flat region or a hull facet exactly on the plate, then any other. A sphere or refined
+// direction can tie with a resting face while tilted within the plate tolerance: its face would
+// touch the plate along one edge only.
+int tie_rank(const OrientationCandidate& c) {
+  if (c.origin == "as given") return 0;
+  return c.origin == "flat face down" || c.origin == "hull facet" ? 1 : 2;
+}
+
+// The best of the pool: the least score; among scores equal up to rounding, the lowest tie_rank,
+// then the direction nearest +Z (the smallest turn), then the earliest in the pool. Then the best
+// distinct others.
 void choose_best(const OrientationGeometry& g, const OrientationOptions& o, const std::vector<OrientationCandidate>& pool,
                  OrientationResult& result) {
   const double tie = 1e-9 * g.total_area * g.size;
@@ -239,9 +249,13 @@ void choose_best(const OrientationGeometry& g, const OrientationOptions& o, cons
   for (const OrientationCandidate& c : pool) least = std::min(least, c.score);
   size_t best = 0;
   bool found = false;
+  auto preferred = [&](size_t k) {
+    const int rank = tie_rank(pool[k]), best_rank = tie_rank(pool[best]);
+    return rank != best_rank ? rank < best_rank : pool[k].direction.z() > pool[best].direction.z();
+  };
   for (size_t k = 0; k < pool.size(); ++k) {
     if (pool[k].score > least + tie) continue;
-    if (!found || pool[k].direction.z() > pool[best].direction.z()) best = k, found = true;
+    if (!found || preferred(k)) best = k, found = true;
   }
   std::vector<size_t> order(pool.size());
   std::iota(order.begin(), order.end(), size_t{0});

@@ -30,9 +30,10 @@
 // the part came in. The bonus is small: it trades at most that thin a slab of support per mm² of
 // contact.
 //
-// The search (deterministic; every step in a fixed order, ties to the direction nearer +Z, then to
-// the earlier candidate; the same with any thread count), the score a fast prefilter and the
-// support model the judge:
+// The search (deterministic; every step in a fixed order; among equal scores the pose as given
+// wins, then a pose that lays a flat region or a hull facet exactly on the plate, then the
+// direction nearer +Z, then the earlier candidate; the same with any thread count), the score a
+// fast prefilter and the support model the judge:
 //   1. candidates: the pose as given (+Z); sphere_candidates directions on a Fibonacci sphere;
 //      for the largest flat regions of the surface (parallel faces, by area) the directions that
 //      put them face down on the plate or face up; for the largest convex-hull facets, the pose

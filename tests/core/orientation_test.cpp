@@ -241,6 +241,27 @@ TEST(Orientation, BoxStaysAsGivenAndATurnedBoxLandsOnItsLargestFace) {
   EXPECT_TRUE(cube.rotation.isIdentity(0.0));
 }
 
+TEST(Orientation, ATieGoesToAFaceFlatOnThePlateNotToATiltWithinTheTolerance) {
+  // A 2 x 40 x 60 plate with its largest face (40 x 60, at x = 0) turned 10° off face down. With a
+  // plate tolerance of 0.5 mm every direction that tilts that face by less than about 0.5° still
+  // rests it on the plate and scores exactly the same: no overhang, the same contact. With a dense
+  // sphere, some of those directions lie nearer +Z than the face flat down and reach the exact
+  // scoring; the search must still lay the face flat, not on one edge.
+  const Surface plate = test::box({0, 0, 0}, {2, 40, 60});
+  const Surface turned = test::transformed(plate, test::axis_angle({0, 1, 0}, -80.0 * M_PI / 180.0));
+  OrientationOptions o;
+  o.plate_tolerance = 0.5;
+  o.sphere_candidates = 200000;
+  o.support_model_candidates = 0;  // the score alone: the support model would see the tilt
+  const OrientationResult r = optimize_orientation(turned, o);
+  EXPECT_THAT(r.best.origin, ::testing::AnyOf("flat face down", "hull facet"));
+  EXPECT_NEAR(r.best.contact_area, 2400.0, 1e-9);
+  // Flat on its largest face the plate stands 2 high, four corners on the build plate.
+  const Eigen::VectorXd z = sorted_heights(apply_orientation(turned, r.rotation));
+  EXPECT_LT(z(3), 1e-9);
+  EXPECT_NEAR(z(z.size() - 1), 2.0, 1e-9);
+}
+
 TEST(Orientation, SphereAndCubeAreDeterministicOnAnyThreadCount) {
   for (const Surface& s : {test::icosphere(4), test::transformed(test::box({0, 0, 0}, {10, 10, 10}), test::axis_angle({1, 2, 3}, 0.4))}) {
     OrientationOptions one, two;
