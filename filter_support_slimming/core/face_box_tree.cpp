@@ -9,24 +9,38 @@
 namespace slim {
 namespace {
 constexpr int kLeafFaces = 8;
+// Subtrees of at least this many faces are built as OpenMP tasks.
+constexpr int kTaskFaces = 1 << 14;
+
+// The nodes of a subtree over `count` faces: its shape depends on the count alone, so each
+// subtree owns a range of nodes known before it is built (pre-order: a node, its left subtree,
+// its right subtree), and subtrees can be built apart into one vector.
+int subtree_nodes(int count) {
+  return count <= kLeafFaces ? 1 : 1 + subtree_nodes(count / 2) + subtree_nodes(count - count / 2);
+}
 }  // namespace
 
 FaceBoxTree::FaceBoxTree(const Surface& surface) : s_(surface) {
   const int faces = static_cast<int>(surface.F.rows());
   order_.resize(static_cast<size_t>(faces));
   std::vector<Eigen::Vector3d> centroid(static_cast<size_t>(faces));
+#pragma omp parallel for schedule(static)
   for (int f = 0; f < faces; ++f) {
     order_[static_cast<size_t>(f)] = f;
     centroid[static_cast<size_t>(f)] =
         (surface.V.row(surface.F(f, 0)) + surface.V.row(surface.F(f, 1)) + surface.V.row(surface.F(f, 2))).transpose() / 3.0;
   }
-  nodes_.reserve(static_cast<size_t>(2 * (faces / kLeafFaces + 1)));
-  if (faces > 0) build(0, faces, centroid);
+  if (faces == 0) return;
+  nodes_.resize(static_cast<size_t>(subtree_nodes(faces)));
+  // The tree is the same on any thread count: each subtree's faces, split and nodes are fixed
+  // before it is built; the tasks only share out the work.
+#pragma omp parallel
+#pragma omp single
+  build(0, 0, faces, centroid);
 }
 
-int FaceBoxTree::build(int first, int count, std::vector<Eigen::Vector3d>& centroid) {
-  const int id = static_cast<int>(nodes_.size());
-  nodes_.emplace_back();
+void FaceBoxTree::build(int id, int first, int count, std::vector<Eigen::Vector3d>& centroid) {
+  Node& n = nodes_[static_cast<size_t>(id)];
   if (count <= kLeafFaces) {
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
     for (int i = first; i < first + count; ++i)
@@ -34,9 +48,8 @@ int FaceBoxTree::build(int first, int count, std::vector<Eigen::Vector3d>& centr
         lo = lo.cwiseMin(s_.V.row(s_.F(order_[static_cast<size_t>(i)], k)).transpose());
         hi = hi.cwiseMax(s_.V.row(s_.F(order_[static_cast<size_t>(i)], k)).transpose());
       }
-    Node& n = nodes_[static_cast<size_t>(id)];
     n.lo = lo, n.hi = hi, n.first = first, n.count = count;
-    return id;
+    return;
   }
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
   for (int i = first; i < first + count; ++i) {
@@ -51,15 +64,15 @@ int FaceBoxTree::build(int first, int count, std::vector<Eigen::Vector3d>& centr
     const double x = centroid[static_cast<size_t>(a)](axis), y = centroid[static_cast<size_t>(b)](axis);
     return x < y || (x == y && a < b);
   });
-  const int left = build(first, count / 2, centroid);
-  const int right = build(first + count / 2, count - count / 2, centroid);
-  // The box from the children's (nodes_ may have grown: no reference held across the calls).
-  Node& n = nodes_[static_cast<size_t>(id)];
-  n.lo = nodes_[static_cast<size_t>(left)].lo.cwiseMin(nodes_[static_cast<size_t>(right)].lo);
-  n.hi = nodes_[static_cast<size_t>(left)].hi.cwiseMax(nodes_[static_cast<size_t>(right)].hi);
-  n.left = left;
-  n.right = right;
-  return id;
+  n.left = id + 1;
+  n.right = id + 1 + subtree_nodes(count / 2);
+#pragma omp task default(shared) if (count >= kTaskFaces)
+  build(n.left, first, count / 2, centroid);
+  build(n.right, first + count / 2, count - count / 2, centroid);
+#pragma omp taskwait
+  const Node &a = nodes_[static_cast<size_t>(n.left)], &b = nodes_[static_cast<size_t>(n.right)];
+  n.lo = a.lo.cwiseMin(b.lo);
+  n.hi = a.hi.cwiseMax(b.hi);
 }
 
 double FaceBoxTree::box_distance(const Node& n, const Eigen::Vector3d& p) const {

@@ -1,13 +1,15 @@
 // The distance from a point to a surface through the tree of face boxes (core/face_box_tree.h)
 // against a scan of every face: the same distance to the bit and the same face (ties: the lower),
 // for points near the surface, far outside it and on its vertices (where faces tie), on a bumpy
-// ball, a T with long thin faces, a surface with faces of no area, and none.
+// ball, a T with long thin faces, a surface with faces of no area, and none; and on a ball large
+// enough for the tree to be built in parallel, on one thread and on two.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "core/face_box_tree.h"
+#include "core/parallel_for.h"
 #include "core/surface_distance.h"
 #include "support/shapes.h"
 
@@ -50,4 +52,25 @@ TEST(FaceBoxTree, TheDistanceAndFaceAreAScansToTheBit) {
   int face = 0;
   EXPECT_EQ(FaceBoxTree(Surface{}).distance(Eigen::Vector3d::Zero(), &face), HUGE_VAL);
   EXPECT_EQ(face, -1);
+}
+
+TEST(FaceBoxTree, ALargeSurfaceBuiltOnAnyThreadCountGivesAScansDistance) {
+  // 81,920 faces: the tree's subtrees of 16,384 faces and more are built as OpenMP tasks.
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> bump(-0.2, 0.2), near(-12.0, 12.0);
+  Surface ball = test::icosphere(6);
+  for (Eigen::Index v = 0; v < ball.V.rows(); ++v) ball.V.row(v) *= 1.0 + 0.05 * bump(gen);
+  ASSERT_GE(ball.F.rows(), 65536);
+  std::vector<Eigen::Vector3d> points;
+  for (int q = 0; q < 150; ++q) points.emplace_back(near(gen), near(gen), 10.0 + near(gen));
+  for (int threads : {1, 2}) {
+    const ThreadScope scope(threads);
+    const FaceBoxTree tree(ball);
+    for (const Eigen::Vector3d& p : points) {
+      int expected_face = -1, face = -2;
+      const double expected = scan(ball, p, expected_face);
+      EXPECT_EQ(tree.distance(p, &face), expected) << threads << " threads, " << p.transpose();
+      EXPECT_EQ(face, expected_face) << threads << " threads, " << p.transpose();
+    }
+  }
 }
