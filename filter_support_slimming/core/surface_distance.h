@@ -6,8 +6,9 @@
 //
 // Inputs: two surfaces (#V by 3 mm, #F by 3), checked; any faces, open or closed.
 // Output (SurfaceDistance): the largest and the mean distance, both ways, from the samples of one
-//   surface to the nearest point of the other (mm): its vertices, its face centroids and its edge
-//   midpoints (samples of zero-area faces too). hausdorff_mm = the larger of the two largest.
+//   surface to the nearest point of the other (mm): its vertices (those of some face: a vertex of
+//   no face is no part of the surface), its face centroids and its edge midpoints (samples of
+//   zero-area faces too). hausdorff_mm = the larger of the two largest.
 // Exact point-to-triangle distances (the closest point on each candidate triangle), the candidates
 // from a tree of the other surface's face boxes (face_box_tree.h), so the cost is about
 // O((#V + #F) log) rather than O(#V #F). Deterministic; parallel over the samples.

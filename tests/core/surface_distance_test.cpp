@@ -93,3 +93,19 @@ TEST(SurfaceDistance, MovedMeshSearchEqualsTheFullSearch) {
   EXPECT_DOUBLE_EQ(hausdorff_of_moved(box, test::transformed(box, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 2))), 2.0);
   EXPECT_THROW(hausdorff_of_moved(ball, test::icosphere(2, 10.0)), std::invalid_argument);
 }
+
+// A vertex that no face uses is no part of the surface: it changes neither distance, however far
+// from the surface it lies or moves (the moved search would otherwise bound it by its move alone).
+TEST(SurfaceDistance, AVertexOfNoFaceIsNoSample) {
+  const Surface box = test::box({0, 0, 0}, {10, 10, 10});
+  const Surface up = test::transformed(box, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 2));
+  Surface box_stray = box, up_stray = up;
+  box_stray.V.conservativeResize(box.V.rows() + 1, 3);
+  up_stray.V.conservativeResize(up.V.rows() + 1, 3);
+  box_stray.V.row(box.V.rows()) = Eigen::RowVector3d(0, 0, 100);  // 90 mm above both boxes
+  up_stray.V.row(up.V.rows()) = Eigen::RowVector3d(0, 0, 100.5);
+  EXPECT_NEAR(surface_distance(box_stray, up_stray).hausdorff_mm, 2.0, 1e-12);
+  EXPECT_NEAR(surface_distance(box_stray, up).hausdorff_mm, 2.0, 1e-12);
+  EXPECT_DOUBLE_EQ(hausdorff_of_moved(box_stray, up_stray), 2.0);
+  EXPECT_EQ(surface_distance(box_stray, up_stray).a_to_b_mean_mm, surface_distance(box, up).a_to_b_mean_mm);
+}
