@@ -31,7 +31,7 @@ TEST(UniformGrid, TheNearestItemIsTheScansToTheBitAndTheIndex) {
   std::mt19937 gen(11);
   std::uniform_real_distribution<double> in(0.0, 10.0), step(-0.6, 0.6), far(-40.0, 50.0);
   std::uniform_int_distribution<int> whole(0, 10);
-  for (const Eigen::Vector3i dims : {Eigen::Vector3i(1, 1, 1), Eigen::Vector3i(8, 8, 8), Eigen::Vector3i(20, 3, 11)}) {
+  for (const Eigen::Vector3i& dims : {Eigen::Vector3i(1, 1, 1), Eigen::Vector3i(8, 8, 8), Eigen::Vector3i(20, 3, 11)}) {
     std::vector<Segment> items;
     for (int i = 0; i < 300; ++i) {
       const Eigen::Vector3d a(in(gen), in(gen), in(gen));
