@@ -322,7 +322,6 @@ std::vector<Eigen::Vector3d> fibonacci_sphere(int count) {
   return dirs;
 }
 
-
 OrientationOptions with_effort(OrientationEffort effort, OrientationOptions base) {
   switch (effort) {
     case OrientationEffort::Fast: base.sphere_candidates = 1000, base.refine_starts = 4; break;

@@ -72,8 +72,6 @@ struct OrientationGeometry {
 };
 
 // The cell of a unit vector on a cube map with R by R cells on each of the cube's six faces.
-
-// The cell of a unit vector on a cube map with R by R cells on each of the cube's six faces.
 int cube_cell(const Eigen::Vector3d& n, int R);
 
 OrientationGeometry orientation_geometry(const CheckedSurface& surface, const OrientationOptions& options, bool with_hull,

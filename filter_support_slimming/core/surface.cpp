@@ -41,6 +41,16 @@ void check_surface(const Surface& s) {
                                     ", but the mesh has " + std::to_string(nv) + " vertices");
 }
 
+std::vector<Eigen::Index> face_vertices(const Surface& s) {
+  std::vector<bool> used(static_cast<size_t>(s.V.rows()), false);
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) used[static_cast<size_t>(s.F(f, k))] = true;
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index v = 0; v < s.V.rows(); ++v)
+    if (used[static_cast<size_t>(v)]) kept.push_back(v);
+  return kept;
+}
+
 double signed_volume(const Surface& s) {
   if (s.V.rows() == 0) return 0.0;
   // Far from the origin the terms a·(b×c) dwarf their sum; about the centroid they do not.

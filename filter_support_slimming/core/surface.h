@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -47,6 +48,10 @@ Eigen::VectorXd face_areas(const Surface& s);
 // F indexes outside V or V has a non-finite coordinate. Everything downstream assumes a surface
 // that passed this.
 void check_surface(const Surface& s);
+
+// The vertices that some face uses, in increasing index order (a vertex of no face is no part of
+// the surface). F must index inside V (check_surface).
+std::vector<Eigen::Index> face_vertices(const Surface& s);
 
 // Signed enclosed volume (positive for a closed, outward-oriented surface). Summed about the
 // vertices' centroid, so a part far from the origin loses no digits; for an open surface the

@@ -17,22 +17,11 @@ namespace {
 
 Eigen::Vector3d corner(const Surface& s, Eigen::Index f, int k) { return s.V.row(s.F(f, k)).transpose(); }
 
-// The vertices of a surface that some face uses, in index order: a vertex of no face is no part of
-// the surface (and the moved search's bound, how far a sample moved, holds only on the surface).
-std::vector<Eigen::Index> surface_vertices(const Surface& s) {
-  std::vector<bool> used(static_cast<size_t>(s.V.rows()), false);
-  for (Eigen::Index f = 0; f < s.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) used[static_cast<size_t>(s.F(f, k))] = true;
-  std::vector<Eigen::Index> kept;
-  for (Eigen::Index v = 0; v < s.V.rows(); ++v)
-    if (used[static_cast<size_t>(v)]) kept.push_back(v);
-  return kept;
-}
-
-// The samples of a surface: its vertices of surface_vertices(), face centroids, edge midpoints
-// (each edge once per face).
+// The samples of a surface: the vertices that faces use (a vertex of no face is no part of the
+// surface, and the moved search's bound, how far a sample moved, holds only on the surface), face
+// centroids, edge midpoints (each edge once per face).
 Points samples(const Surface& s) {
-  const std::vector<Eigen::Index> vertices = surface_vertices(s);
+  const std::vector<Eigen::Index> vertices = face_vertices(s);
   const auto count = static_cast<Eigen::Index>(vertices.size());
   Points P(count + 4 * s.F.rows(), 3);
   for (Eigen::Index k = 0; k < count; ++k) P.row(k) = s.V.row(vertices[static_cast<size_t>(k)]);

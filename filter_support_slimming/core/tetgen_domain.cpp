@@ -140,13 +140,10 @@ std::string tetgen_error(int code) {
 // others) and one facet per face. Prepared here, so the child allocates as little as possible.
 void fill_tetgen_input(const Surface& surface, tetgenio& in, Eigen::VectorXi& surface_vertex, std::vector<int>& input_vertex) {
   surface_vertex = Eigen::VectorXi::Constant(surface.V.rows(), -1);
-  for (Eigen::Index f = 0; f < surface.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) surface_vertex(surface.F(f, k)) = 0;
-  for (Eigen::Index v = 0; v < surface.V.rows(); ++v)
-    if (surface_vertex(v) == 0) {
-      surface_vertex(v) = static_cast<int>(input_vertex.size());
-      input_vertex.push_back(static_cast<int>(v));
-    }
+  for (Eigen::Index v : face_vertices(surface)) {
+    surface_vertex(v) = static_cast<int>(input_vertex.size());
+    input_vertex.push_back(static_cast<int>(v));
+  }
   in.firstnumber = 0;
   in.numberofpoints = static_cast<int>(input_vertex.size());
   in.pointlist = new REAL[3 * input_vertex.size()];
