@@ -15,6 +15,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/setup.sh"
+source "$here/scripts/lib/ccache.sh"
 build="$here/build-fuzz"
 seconds="${FUZZ_SECONDS:-60}"
 jobs="${FUZZ_JOBS:-1}"
@@ -22,7 +23,7 @@ seed="${FUZZ_SEED:-}"
 generator=()
 command -v ninja >/dev/null 2>&1 && [ ! -f "$build/Makefile" ] && generator=(-G Ninja)
 cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DSLIM_FUZZ=ON -DSLIM_BUILD_PLUGIN=OFF -DSLIM_BUILD_BENCH=OFF "${generator[@]}" >/dev/null
+  -DSLIM_FUZZ=ON -DSLIM_BUILD_PLUGIN=OFF -DSLIM_BUILD_BENCH=OFF "${ccache_launcher[@]}" "${generator[@]}" >/dev/null
 targets=(${FUZZ_TARGETS:-slim_fuzz reader_fuzz})
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
 export OPENBLAS_NUM_THREADS=1

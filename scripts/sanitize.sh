@@ -11,6 +11,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/setup.sh"
+source "$here/scripts/lib/ccache.sh"
 build="$here/build-asan"
 generator=()
 command -v ninja >/dev/null 2>&1 && [ ! -f "$build/Makefile" ] && generator=(-G Ninja)
@@ -22,7 +23,7 @@ export ASAN_OPTIONS="detect_leaks=1:detect_odr_violation=0:halt_on_error=1:stric
 export LSAN_OPTIONS="suppressions=$here/tests/sanitizers/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export OPENBLAS_NUM_THREADS=1 QT_QPA_PLATFORM=offscreen
-cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Debug -DSLIM_SANITIZE=ON -DSLIM_BUILD_BENCH=OFF "${generator[@]}" >/dev/null
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Debug -DSLIM_SANITIZE=ON -DSLIM_BUILD_BENCH=OFF "${ccache_launcher[@]}" "${generator[@]}" >/dev/null
 cmake --build "$build" -j "$(nproc)" --target slim_sanitized_tests
 cd "$build"
 LEFT_TO_THE_MAIN_SUITE='^Slimming\.(CoherentSavesMoreSupportThanThePaperOnThe(T|Bunny|Arch)|ASavingWithinTheModelsErrorLeavesTheInputAsItWas|NeverReturnsAPartThatNeedsMoreSupport|ArchOpeningIsSlimmedWithinTheCreaseLimit)$'

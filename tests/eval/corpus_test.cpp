@@ -11,6 +11,7 @@
 
 #include "run_command.h"
 #include "support/shapes.h"
+#include "support/source_paths.h"
 #include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
@@ -18,7 +19,7 @@ namespace fs = std::filesystem;
 
 TEST(Corpus, EveryModelArrivesInItsPrintPoseWithItsFaces) {
   const fs::path out = fs::path(SLIM_EVAL_OUT_DIR) / "corpus";  // kept: a second run only checks
-  const test::CommandRun run = test::run_command(test::shell_quote(SLIM_SOURCE_DIR "/scripts/corpus.sh") + " --build " +
+  const test::CommandRun run = test::run_command(test::shell_quote(test::source_dir() + "/scripts/corpus.sh") + " --build " +
                                                  test::shell_quote(SLIM_BINARY_DIR) + " --out " + test::shell_quote(out.string()));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   // docs/corpus.md's table: name -> faces.

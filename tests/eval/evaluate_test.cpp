@@ -15,6 +15,7 @@
 #include "key_values.h"
 #include "run_command.h"
 #include "support/shapes.h"
+#include "support/source_paths.h"
 #include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
@@ -42,7 +43,7 @@ eval::GcodeExtrusion read_gcode(const fs::path& file) {
 }
 
 test::CommandRun evaluate(const std::string& args) {
-  return test::run_command(test::shell_quote(SLIM_SOURCE_DIR "/tools/evaluate.sh") + " --build " +
+  return test::run_command(test::shell_quote(test::source_dir() + "/tools/evaluate.sh") + " --build " +
                            test::shell_quote(SLIM_BINARY_DIR) + " --quiet " + args);
 }
 

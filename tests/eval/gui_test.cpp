@@ -15,8 +15,10 @@
 #include <common/pluginmanager.h>
 
 #include "core/overhang.h"
+#include "harness.h"
 #include "run_command.h"
 #include "support/shapes.h"
+#include "support/source_paths.h"
 #include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
@@ -30,7 +32,7 @@ namespace {
 int smoothing_menu_index(const QString& filter) {
   PluginManager pm;
   RichParameterList globals;
-  pm.loadPlugins(globals, QDir(SLIM_MESHLAB_PREFIX "/lib/x86_64-linux-gnu/meshlab/plugins"));
+  pm.loadPlugins(globals, QDir(QString::fromStdString(test::meshlab_prefix() + "/lib/x86_64-linux-gnu/meshlab/plugins")));
   int index = 0;
   for (auto it = pm.stringFilterMap.begin(); it != pm.stringFilterMap.end(); ++it) {
     QAction* action = it.value()->AC(it.key());
@@ -52,8 +54,8 @@ TEST(MeshLabGui, SupportSlimmingFromTheFiltersMenuAddsASlimmedLayer) {
   // Kept after the test: the screenshots are its record.
   const fs::path out = fs::path(SLIM_GUI_OUT_DIR);
   const test::CommandRun r =
-      test::run_command("timeout 300 " + test::shell_quote(SLIM_SOURCE_DIR "/tests/eval/gui_check.sh") + " " +
-                        test::shell_quote(SLIM_MESHLAB_PREFIX) + " " + test::shell_quote(mesh) + " " +
+      test::run_command("timeout 300 " + test::shell_quote(test::source_dir() + "/tests/eval/gui_check.sh") + " " +
+                        test::shell_quote(test::meshlab_prefix()) + " " + test::shell_quote(mesh) + " " +
                         test::shell_quote(out.string()) + " " + std::to_string(index));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string layer_name = fs::path(mesh).filename().string() + " slimmed";

@@ -13,6 +13,7 @@
 #include "key_values.h"
 #include "run_command.h"
 #include "support/shapes.h"
+#include "support/source_paths.h"
 #include "core/support_model.h"
 #include "vcg_adapters/mesh_io.h"
 
@@ -25,7 +26,7 @@ fs::path scratch(const std::string& name) { return test::scratch_dir(SLIM_EVAL_O
 std::map<std::string, double> parse_metrics(const std::string& text) { return test::parse_key_values(text); }
 
 test::CommandRun slice(const fs::path& stl, const std::string& slicer, const fs::path& out, const std::string& more = "") {
-  return test::run_command(test::shell_quote(SLIM_SOURCE_DIR "/tools/slice_support.sh") + " " + test::shell_quote(stl.string()) +
+  return test::run_command(test::shell_quote(test::source_dir() + "/tools/slice_support.sh") + " " + test::shell_quote(stl.string()) +
                            " --slicer " + slicer + " --angle 45 --build " + test::shell_quote(SLIM_BINARY_DIR) + " --out " +
                            test::shell_quote(out.string()) + " " + more);
 }
@@ -156,7 +157,7 @@ TEST(SliceSupport, BadArgumentsFailWithAOneLineReason) {
   const fs::path arch = write_arch(dir);
   for (const std::string& args : {std::string("--slicer simplify3d"), std::string("--slicer prusa --turns 45"),
                                   std::string("--slicer cura --turns 0,"), std::string("--slicer prusa --jobs 0")}) {
-    const test::CommandRun r = test::run_command(test::shell_quote(SLIM_SOURCE_DIR "/tools/slice_support.sh") + " " +
+    const test::CommandRun r = test::run_command(test::shell_quote(test::source_dir() + "/tools/slice_support.sh") + " " +
                                                  test::shell_quote(arch.string()) + " --angle 45 --out " +
                                                  test::shell_quote((dir / "o").string()) + " " + args);
     EXPECT_NE(r.exit_code, 0) << args;

@@ -10,6 +10,7 @@
 
 #include "fuzz/fuzz_case.h"
 #include "support/bad_inputs.h"
+#include "support/source_paths.h"
 #ifdef SLIM_FUZZ_READERS
 #include "fuzz/reader_case.h"
 #include "vcg_adapters/mesh_io.h"
@@ -18,7 +19,7 @@
 namespace fs = std::filesystem;
 
 namespace {
-const fs::path kFuzzDir = fs::path(SLIM_SOURCE_DIR) / "tests" / "fuzz";
+const fs::path kFuzzDir = fs::path(slim::test::source_dir()) / "tests" / "fuzz";
 
 std::vector<std::uint8_t> read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

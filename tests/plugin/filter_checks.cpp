@@ -5,6 +5,7 @@
 #include <common/filterscript.h>
 
 #include "core/welded_view.h"
+#include "support/source_paths.h"
 #include "vcg_adapters/surface_adapter.h"
 
 namespace slim::test {
@@ -100,7 +101,7 @@ void expect_oriented_layer(const MeshModel& input, const MeshModel& out, const s
 
 RichParameterList example_script_params(const QString& file, const QString& filter) {
   FilterScript script;
-  EXPECT_TRUE(script.open(QString(SLIM_SOURCE_DIR) + "/examples/" + file)) << file.toStdString();
+  EXPECT_TRUE(script.open(QString::fromStdString(source_dir()) + "/examples/" + file)) << file.toStdString();
   for (const auto& entry : script)
     if (entry.filterName() == filter) return entry.second;
   ADD_FAILURE() << filter.toStdString() << " not in " << file.toStdString();

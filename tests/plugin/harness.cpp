@@ -9,7 +9,10 @@
 
 namespace slim::test {
 
-PluginHarness::PluginHarness() : loader_(QString(SLIM_PLUGIN_PATH)) {
+std::string plugin_path() { return SLIM_PLUGIN_PATH; }
+std::string meshlab_prefix() { return SLIM_MESHLAB_PREFIX; }
+
+PluginHarness::PluginHarness() : loader_(QString::fromStdString(plugin_path())) {
   QObject* instance = loader_.instance();
   plugin_ = qobject_cast<MeshFilterInterface*>(instance);
   if (plugin_) plugin_->setLog(&log_);

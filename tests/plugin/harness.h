@@ -20,7 +20,7 @@ namespace slim::test {
 
 class PluginHarness {
  public:
-  PluginHarness();  // loads SLIM_PLUGIN_PATH; ASSERT-style failures surface through ok()/error()
+  PluginHarness();  // loads plugin_path(); ASSERT-style failures surface through ok()/error()
   bool ok() const { return plugin_ != nullptr; }
   QString error() const { return loader_.errorString(); }
   MeshFilterInterface* plugin() const { return plugin_; }
@@ -45,6 +45,11 @@ struct ServerRun {
   int exit_code = -1;
   std::string output;  // stdout + stderr
 };
+// The built plugin (absolute path), and the private MeshLab prefix whose meshlabserver the tests run.
+// Functions, not macros, for the reason support/source_paths.h gives.
+std::string plugin_path();
+std::string meshlab_prefix();
+
 // Runs PREFIX/bin/meshlabserver under xvfb-run with a throwaway HOME; `args` are appended.
 ServerRun run_meshlabserver(const std::string& args);
 

@@ -19,6 +19,7 @@
 #include "harness.h"
 #include "support/bad_inputs.h"
 #include "support/shapes.h"
+#include "support/source_paths.h"
 #include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
@@ -37,7 +38,7 @@ struct Scratch {
 };
 
 QString example(const QString& file) {
-  QFile in(QString(SLIM_SOURCE_DIR) + "/examples/" + file);
+  QFile in(QString::fromStdString(test::source_dir()) + "/examples/" + file);
   EXPECT_TRUE(in.open(QIODevice::ReadOnly));
   return QString::fromUtf8(in.readAll());
 }
@@ -238,7 +239,7 @@ TEST(MeshlabserverScripts, InsideOutMeshIsAnalysedTurnedOverAndSaidSo) {
   const fs::path in = scratch("inside_out.ply"), out = scratch("inside_out_overhang.ply");
   test::write_ascii_ply(in.string(), flipped(test::t_shape()));
   const test::ServerRun run = test::run_meshlabserver("-i '" + in.string() + "' -o '" + out.string() +
-                                                      "' -m fq -s '" SLIM_SOURCE_DIR "/examples/overhang_analysis.mlx'");
+                                                      "' -m fq -s '" + test::source_dir() + "/examples/overhang_analysis.mlx'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(mentions(run.output, "inside out")) << run.output;
   // The risky faces are the T's arm undersides, as if it were the right way out.

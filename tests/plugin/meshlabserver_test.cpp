@@ -11,6 +11,7 @@
 #include "core/overhang.h"
 #include "harness.h"
 #include "support/shapes.h"
+#include "support/source_paths.h"
 #include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
@@ -29,7 +30,7 @@ TEST(Meshlabserver, OverhangAnalysisScriptOnTheBunny) {
   ASSERT_TRUE(fs::exists(in)) << "run scripts/setup.sh first";
   const fs::path out = scratch("bunny_overhang.ply");
   const test::ServerRun run = test::run_meshlabserver(
-      "-i '" + in + "' -o '" + out.string() + "' -m fq fc sa -s '" SLIM_SOURCE_DIR "/examples/overhang_analysis.mlx'");
+      "-i '" + in + "' -o '" + out.string() + "' -m fq fc sa -s '" + test::source_dir() + "/examples/overhang_analysis.mlx'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   ASSERT_EQ(run.output.find("Problem with filter"), std::string::npos) << run.output;
 
@@ -64,7 +65,7 @@ TEST(Meshlabserver, SupportSlimmingScriptOnTheBunny) {
   const std::string in = test::sample_bunny_path();
   const fs::path out = scratch("bunny_slimmed.ply");
   const test::ServerRun run = test::run_meshlabserver(
-      "-i '" + in + "' -o '" + out.string() + "' -m fq fc vq sa -s '" SLIM_SOURCE_DIR "/examples/support_slimming.mlx'");
+      "-i '" + in + "' -o '" + out.string() + "' -m fq fc vq sa -s '" + test::source_dir() + "/examples/support_slimming.mlx'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   ASSERT_EQ(run.output.find("Problem with filter"), std::string::npos) << run.output;
   std::smatch m;
@@ -94,7 +95,7 @@ TEST(Meshlabserver, PrintOrientationScriptOnTheBunny) {
   const std::string in = test::sample_bunny_path();
   const fs::path out = scratch("bunny_oriented.ply");
   const test::ServerRun run = test::run_meshlabserver(
-      "-i '" + in + "' -o '" + out.string() + "' -m fq fc sa -s '" SLIM_SOURCE_DIR "/examples/print_orientation.mlx'");
+      "-i '" + in + "' -o '" + out.string() + "' -m fq fc sa -s '" + test::source_dir() + "/examples/print_orientation.mlx'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   ASSERT_EQ(run.output.find("Problem with filter"), std::string::npos) << run.output;
   std::smatch m;
@@ -129,7 +130,7 @@ TEST(Meshlabserver, FailingFilterExplainsItselfInTheLog) {
          "end_header\n0 0 0\n1 0 0\n0 1 0\n";
   }
   const test::ServerRun run = test::run_meshlabserver(
-      "-i '" + in.string() + "' -o '" + scratch("out.ply").string() + "' -s '" SLIM_SOURCE_DIR
+      "-i '" + in.string() + "' -o '" + scratch("out.ply").string() + "' -s '" + test::source_dir() +
       "/examples/overhang_analysis.mlx'");
   EXPECT_NE(run.output.find("no faces"), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find("Segmentation"), std::string::npos) << run.output;

@@ -22,6 +22,7 @@
 #include "harness.h"
 #include "support/bad_inputs.h"
 #include "support/shapes.h"
+#include "support/source_paths.h"
 #include "vcg_adapters/surface_adapter.h"
 
 using namespace slim;
@@ -233,7 +234,7 @@ INSTANTIATE_TEST_SUITE_P(Catalogue, BadInputPlugin, ::testing::ValuesIn(test::ba
 // The parameters of a hand-written script: the example with `edit` applied to its text.
 RichParameterList script_params(const QString& example, const QString& filter,
                                 const std::function<QString(QString)>& edit) {
-  QFile in(QString(SLIM_SOURCE_DIR) + "/examples/" + example);
+  QFile in(QString::fromStdString(test::source_dir()) + "/examples/" + example);
   EXPECT_TRUE(in.open(QIODevice::ReadOnly));
   QTemporaryDir dir;
   const QString path = dir.filePath("edited.mlx");

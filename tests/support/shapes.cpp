@@ -1,5 +1,7 @@
 #include "support/shapes.h"
 
+#include "support/source_paths.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -181,7 +183,7 @@ Surface transformed(const Surface& s, const Eigen::Matrix3d& R, const Eigen::Vec
   return out;
 }
 
-std::string sample_bunny_path() { return std::string(SLIM_DATA_DIR) + "/bunny.ply"; }
+std::string sample_bunny_path() { return data_dir() + "/bunny.ply"; }
 
 }  // namespace slim::test
 
