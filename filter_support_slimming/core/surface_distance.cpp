@@ -50,43 +50,65 @@ void one_way(const Surface& from, const Surface& to, double& largest, double& me
   mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
 }
 
-// The largest distance from the samples P of one surface to the surface `to`, whose samples Q
-// are their moved copies: the samples in order of how far they moved, searched in blocks until a
-// block starts below the largest distance found. The largest of exact distances: the same value
-// on any thread count.
-double largest_one_way(const Points& P, const Points& Q, const Surface& to) {
-  const Eigen::Index n = P.rows();
-  using Moved = std::pair<double, Eigen::Index>;
-  std::vector<Moved> moved(static_cast<size_t>(n));
+// The moved search's units, in the order it visits them: a vertex that faces use (its own sample)
+// or a face (its centroid and edge midpoints), each with how far its samples moved at most: the
+// vertex's own move; for a face, the largest move of its corners, as an average of points moves
+// no further than the furthest of them. Vertices are ids [0, #V), face f is #V + f.
+struct Unit {
+  double bound;
+  Eigen::Index id;
+};
+
+std::vector<Unit> units_by_move(const Surface& a, const Surface& b) {
+  const Eigen::VectorXd moved = (a.V - b.V).rowwise().norm();
+  const std::vector<Eigen::Index> vertices = face_vertices(a);
+  std::vector<Unit> units(vertices.size() + static_cast<size_t>(a.F.rows()));
+  for (size_t k = 0; k < vertices.size(); ++k) units[k] = {moved(vertices[k]), vertices[k]};
 #pragma omp parallel for schedule(static)
-  for (Eigen::Index i = 0; i < n; ++i) moved[static_cast<size_t>(i)] = {(P.row(i) - Q.row(i)).norm(), i};
-  auto further = [](const Moved& x, const Moved& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); };
-  const FaceBoxTree tree(to);
-  constexpr Eigen::Index kBlock = 4096;
-  double largest = 0.0;
-  // In blocks, the samples that moved most first, until a block starts at no more than the largest
-  // distance found.
-  auto search = [&](const std::vector<Moved>& list, Eigen::Index count) {
-    for (Eigen::Index start = 0; start < count && list[static_cast<size_t>(start)].first > largest; start += kBlock) {
-      const Eigen::Index end = std::min(count, start + kBlock);
-      std::vector<double> d(static_cast<size_t>(end - start), 0.0);
+  for (Eigen::Index f = 0; f < a.F.rows(); ++f)
+    units[vertices.size() + static_cast<size_t>(f)] = {
+        std::max({moved(a.F(f, 0)), moved(a.F(f, 1)), moved(a.F(f, 2))}), a.V.rows() + f};
+  return units;
+}
+
+// The samples of one unit on surface s, as samples() makes them (the same arithmetic, so the same
+// points): a vertex, or a face's centroid and its three edge midpoints. Returns their count.
+int unit_samples(const Surface& s, Eigen::Index id, Eigen::Vector3d out[4]) {
+  if (id < s.V.rows()) {
+    out[0] = s.V.row(id).transpose();
+    return 1;
+  }
+  const Eigen::Index f = id - s.V.rows();
+  const Eigen::Vector3d a = corner(s, f, 0), b = corner(s, f, 1), c = corner(s, f, 2);
+  out[0] = (a + b + c) / 3.0;
+  out[1] = 0.5 * (a + b);
+  out[2] = 0.5 * (b + c);
+  out[3] = 0.5 * (c + a);
+  return 4;
+}
+
+// The largest distance from the samples of the given units of `from` to the surface of `tree`
+// (`to`: the same mesh moved), or `largest` if more: the units in order, in blocks, until a block
+// starts at no more than the largest distance found; within a unit only the samples that moved
+// further than that (a sample's moved copy lies on `to`, so its distance is at most how far it
+// moved). The largest of exact distances: the same value on any thread count.
+double largest_one_way(const Surface& from, const Surface& to, const FaceBoxTree& tree, const std::vector<Unit>& order,
+                       double largest) {
+  constexpr size_t kBlock = 4096;
+  for (size_t start = 0; start < order.size() && order[start].bound > largest; start += kBlock) {
+    const size_t end = std::min(order.size(), start + kBlock);
+    std::vector<double> d(end - start, 0.0);
 #pragma omp parallel for schedule(dynamic, 64)
-      for (Eigen::Index k = start; k < end; ++k) {
-        const auto& [bound, i] = list[static_cast<size_t>(k)];
-        if (bound > largest) d[static_cast<size_t>(k - start)] = tree.distance(P.row(i).transpose());
-      }
-      for (double x : d) largest = std::max(largest, x);
+    for (size_t k = start; k < end; ++k) {
+      if (!(order[k].bound > largest)) continue;
+      Eigen::Vector3d p[4], q[4];
+      const int n = unit_samples(from, order[k].id, p);
+      unit_samples(to, order[k].id, q);
+      for (int i = 0; i < n; ++i)
+        if ((p[i] - q[i]).norm() > largest) d[k - start] = std::max(d[k - start], tree.distance(p[i]));
     }
-  };
-  // Sorted in two rounds: the first block, then only the samples that moved more than its largest
-  // distance (sorting all of them took as long as the searches).
-  const Eigen::Index first = std::min(kBlock, n);
-  std::partial_sort(moved.begin(), moved.begin() + first, moved.end(), further);
-  search(moved, first);
-  std::vector<Moved> rest;
-  std::copy_if(moved.begin() + first, moved.end(), std::back_inserter(rest), [&](const Moved& m) { return m.first > largest; });
-  std::sort(rest.begin(), rest.end(), further);
-  search(rest, static_cast<Eigen::Index>(rest.size()));
+    for (double x : d) largest = std::max(largest, x);
+  }
   return largest;
 }
 
@@ -149,8 +171,21 @@ double hausdorff_of_moved(const Surface& a, const Surface& b) {
   if (a.V.rows() != b.V.rows() || a.F.rows() != b.F.rows() || a.F != b.F)
     throw std::invalid_argument("Hausdorff distance of a moved mesh: the two surfaces are not one mesh");
   if (a.F.rows() == 0) return 0.0;
-  const Points P = samples(a), Q = samples(b);
-  return std::max(largest_one_way(P, Q, b), largest_one_way(Q, P, a));
+  const FaceBoxTree tree_a(a), tree_b(b);
+  std::vector<Unit> units = units_by_move(a, b);
+  // Both ways on the units that moved most, then both ways on the rest that moved further than
+  // the distance found: sorting all of them took as long as the searches. Each search starts from
+  // the distance found before it, both ways: only a larger one can change the answer.
+  auto further = [](const Unit& x, const Unit& y) { return x.bound > y.bound || (x.bound == y.bound && x.id < y.id); };
+  const auto first = static_cast<std::ptrdiff_t>(std::min<size_t>(4096, units.size()));
+  std::partial_sort(units.begin(), units.begin() + first, units.end(), further);
+  const std::vector<Unit> head(units.begin(), units.begin() + first);
+  double largest = largest_one_way(b, a, tree_a, head, largest_one_way(a, b, tree_b, head, 0.0));
+  std::vector<Unit> rest;
+  std::copy_if(units.begin() + first, units.end(), std::back_inserter(rest), [&](const Unit& u) { return u.bound > largest; });
+  std::sort(rest.begin(), rest.end(), further);
+  largest = largest_one_way(a, b, tree_b, rest, largest);
+  return largest_one_way(b, a, tree_a, rest, largest);
 }
 
 }  // namespace slim

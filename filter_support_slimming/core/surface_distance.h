@@ -30,11 +30,12 @@ SurfaceDistance surface_distance(const Surface& a, const Surface& b);
 
 // The Hausdorff distance between a surface and the same mesh moved (b: a's faces, a's vertex count,
 // other positions), as surface_distance(a, b).hausdorff_mm, exactly, without the means: each
-// sample's own moved copy lies on the other surface, so its distance is at most how far it moved,
-// and the samples are searched from the one that moved most down to the first that moved less
-// than the largest distance found, which no later one can exceed. Only the samples that moved most
-// are searched (a 940k-face bunny slimmed at 5%: the full search took 95 s). Throws
-// std::invalid_argument when b is not a's mesh.
+// sample's own moved copy lies on the other surface, so its distance is at most how far it moved.
+// The vertices and the faces (whose samples move at most as far as their corner that moved most)
+// are searched both ways from the one that moved most down to the first that moved less than the
+// largest distance found, which no later one can exceed; no sample is made or sorted before it is
+// needed. Only the samples that moved most are searched (a 940k-face bunny slimmed at 5%: the full
+// search took 95 s). Throws std::invalid_argument when b is not a's mesh.
 double hausdorff_of_moved(const Surface& a, const Surface& b);
 
 // The closest point of the triangle (p0, p1, p2) to q.

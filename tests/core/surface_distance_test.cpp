@@ -94,6 +94,23 @@ TEST(SurfaceDistance, MovedMeshSearchEqualsTheFullSearch) {
   EXPECT_THROW(hausdorff_of_moved(ball, test::icosphere(2, 10.0)), std::invalid_argument);
 }
 
+// A ball turned 5 degrees about its axis, with a bump near the pole: the points that moved most
+// (the equator's, 0.87 mm along the surface) lie on it to the faceting, and the bump (0.3 mm out,
+// where the turn moves little) holds the distance. The search must go past its first block of
+// 4096 vertices and faces, to the rest that moved further than the distance found there.
+TEST(SurfaceDistance, MovedMeshSearchGoesOnPastThePointsThatMovedMost) {
+  const Surface ball = test::icosphere(5, 10.0, Eigen::Vector3d::Zero());  // 10,242 vertices, 20,480 faces
+  Surface moved = test::transformed(ball, test::axis_angle(Eigen::Vector3d::UnitZ(), 5.0 * M_PI / 180.0));
+  for (Eigen::Index v = 0; v < ball.V.rows(); ++v) {
+    const double cap = std::max(0.0, ball.V(v, 2) - 9.5) / 0.5;  // 0 below z = 9.5, 1 at the pole
+    moved.V.row(v) *= 1.0 + 0.03 * cap;
+  }
+  const double full = surface_distance(ball, moved).hausdorff_mm;
+  EXPECT_GT(full, 0.25);  // the bump's, not the turn's
+  EXPECT_EQ(hausdorff_of_moved(ball, moved), full);
+  EXPECT_EQ(hausdorff_of_moved(moved, ball), full);
+}
+
 // A vertex that no face uses is no part of the surface: it changes neither distance, however far
 // from the surface it lies or moves (the moved search would otherwise bound it by its move alone).
 TEST(SurfaceDistance, AVertexOfNoFaceIsNoSample) {
