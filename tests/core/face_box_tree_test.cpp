@@ -62,15 +62,20 @@ TEST(FaceBoxTree, ALargeSurfaceBuiltOnAnyThreadCountGivesAScansDistance) {
   for (Eigen::Index v = 0; v < ball.V.rows(); ++v) ball.V.row(v) *= 1.0 + 0.05 * bump(gen);
   ASSERT_GE(ball.F.rows(), 65536);
   std::vector<Eigen::Vector3d> points;
-  for (int q = 0; q < 150; ++q) points.emplace_back(near(gen), near(gen), 10.0 + near(gen));
+  std::vector<double> expected;
+  std::vector<int> expected_face;
+  for (int q = 0; q < 150; ++q) {
+    points.emplace_back(near(gen), near(gen), 10.0 + near(gen));
+    expected_face.push_back(-1);
+    expected.push_back(scan(ball, points.back(), expected_face.back()));
+  }
   for (int threads : {1, 2}) {
     const ThreadScope scope(threads);
     const FaceBoxTree tree(ball);
-    for (const Eigen::Vector3d& p : points) {
-      int expected_face = -1, face = -2;
-      const double expected = scan(ball, p, expected_face);
-      EXPECT_EQ(tree.distance(p, &face), expected) << threads << " threads, " << p.transpose();
-      EXPECT_EQ(face, expected_face) << threads << " threads, " << p.transpose();
+    for (size_t q = 0; q < points.size(); ++q) {
+      int face = -2;
+      EXPECT_EQ(tree.distance(points[q], &face), expected[q]) << threads << " threads, " << points[q].transpose();
+      EXPECT_EQ(face, expected_face[q]) << threads << " threads, " << points[q].transpose();
     }
   }
 }
