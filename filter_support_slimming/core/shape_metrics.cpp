@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 
 #include <Eigen/Geometry>
 
 #include "core/parallel_for.h"
+#include "core/weighted_quantile.h"
 
 namespace slim {
 namespace {
@@ -80,21 +80,6 @@ double edge_angle(const Surface& s, const Points& normals, const EdgePair& e) {
 }
 
 bool has_area(const Points& normals, int f) { return normals.row(f).squaredNorm() > 0.0; }
-
-// Length-weighted quantile q in [0, 1] of `values`.
-double weighted_quantile(const std::vector<double>& values, const std::vector<double>& weights, double q) {
-  if (values.empty()) return 0.0;
-  std::vector<size_t> order(values.size());
-  std::iota(order.begin(), order.end(), size_t{0});
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] < values[b]; });
-  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
-  double sum = 0.0;
-  for (size_t i : order) {
-    sum += weights[i];
-    if (sum >= q * total) return values[i];
-  }
-  return values[order.back()];
-}
 
 void require_same_vertex_count(Eigen::Index input, Eigen::Index result) {
   if (input != result)
