@@ -161,25 +161,33 @@ double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
-// Every candidate direction, the pose as given first (so that it wins every tie it is part of).
+// Among poses of equal score, which to prefer (the lower first): the pose as given (no turn at
+// all), then one that rests a flat region or a hull facet exactly on the plate, then any other. A
+// sphere or refined direction can tie with a resting face while tilted within the plate
+// tolerance: its face would touch the plate along one edge only.
+enum TieRank { kAsGiven = 0, kResting = 1, kOther = 2 };
+
+// Every candidate direction with its origin (for people) and tie rank, the pose as given first.
 struct Candidates {
   std::vector<Eigen::Vector3d> dirs;
   std::vector<std::string> origins;
-  void add(const Eigen::Vector3d& d, const char* origin) {
+  std::vector<TieRank> ranks;
+  void add(const Eigen::Vector3d& d, const std::string& origin, TieRank rank) {
     dirs.push_back(d);
     origins.push_back(origin);
+    ranks.push_back(rank);
   }
 };
 
 Candidates candidate_directions(const OrientationGeometry& g, const OrientationOptions& o) {
   Candidates c;
-  c.add(Eigen::Vector3d::UnitZ(), "as given");
-  for (const Eigen::Vector3d& d : fibonacci_sphere(o.sphere_candidates)) c.add(d, "sphere");
+  c.add(Eigen::Vector3d::UnitZ(), "as given", kAsGiven);
+  for (const Eigen::Vector3d& d : fibonacci_sphere(o.sphere_candidates)) c.add(d, "sphere", kOther);
   for (const Region& r : flat_regions(g, o.flat_regions)) {
-    c.add(-r.normal, "flat face down");
-    c.add(r.normal, "flat face up");
+    c.add(-r.normal, "flat face down", kResting);
+    c.add(r.normal, "flat face up", kOther);
   }
-  for (const Region& r : hull_planes(g, o.hull_facets)) c.add(-r.normal, "hull facet");
+  for (const Region& r : hull_planes(g, o.hull_facets)) c.add(-r.normal, "hull facet", kResting);
   return c;
 }
 
@@ -205,52 +213,41 @@ std::vector<size_t> refine_best(const OrientationGeometry& g, const OrientationO
   return starts;
 }
 
-// The pool, scored exactly: the pose as given, the best of the sweep, the refined ones.
-std::vector<OrientationCandidate> exact_pool(const OrientationGeometry& g, const OrientationOptions& o,
-                                             const Candidates& c, const std::vector<size_t>& ranked,
-                                             const std::vector<size_t>& starts,
-                                             const std::vector<Eigen::Vector3d>& refined) {
+// The pool, scored exactly, with the tie ranks: the pose as given, the best of the sweep, the
+// refined ones (moved off any resting face).
+struct Pool {
+  std::vector<OrientationCandidate> scored;
+  std::vector<TieRank> ranks;
+};
+
+Pool exact_pool(const OrientationGeometry& g, const OrientationOptions& o, const Candidates& c,
+                const std::vector<size_t>& ranked, const std::vector<size_t>& starts,
+                const std::vector<Eigen::Vector3d>& refined) {
   Candidates pool;
-  pool.dirs.push_back(c.dirs[0]);
-  pool.origins.push_back(c.origins[0]);
+  pool.add(c.dirs[0], c.origins[0], c.ranks[0]);
   const size_t from_sweep = static_cast<size_t>(std::max(32, 2 * o.report_count));
-  for (size_t k = 0; k < std::min(from_sweep, ranked.size()); ++k) {
-    if (ranked[k] == 0) continue;
-    pool.dirs.push_back(c.dirs[ranked[k]]);
-    pool.origins.push_back(c.origins[ranked[k]]);
-  }
-  for (size_t k = 0; k < starts.size(); ++k) {
-    pool.dirs.push_back(refined[k]);
-    pool.origins.push_back(c.origins[starts[k]] + " refined");
-  }
-  std::vector<OrientationCandidate> scored(pool.dirs.size());
-  parallel_for(static_cast<int>(scored.size()), [&](int k) {
-    scored[static_cast<size_t>(k)] = exact_score(g, pool.dirs[static_cast<size_t>(k)], pool.origins[static_cast<size_t>(k)]);
+  for (size_t k = 0; k < std::min(from_sweep, ranked.size()); ++k)
+    if (ranked[k] != 0) pool.add(c.dirs[ranked[k]], c.origins[ranked[k]], c.ranks[ranked[k]]);
+  for (size_t k = 0; k < starts.size(); ++k) pool.add(refined[k], c.origins[starts[k]] + " refined", kOther);
+  Pool out{std::vector<OrientationCandidate>(pool.dirs.size()), pool.ranks};
+  parallel_for(static_cast<int>(out.scored.size()), [&](int k) {
+    out.scored[static_cast<size_t>(k)] = exact_score(g, pool.dirs[static_cast<size_t>(k)], pool.origins[static_cast<size_t>(k)]);
   });
-  return scored;
+  return out;
 }
 
-// Among poses of equal score, which to prefer: the pose as given (no turn at all), then one that
-// rests a flat region or a hull facet exactly on the plate, then any other. A sphere or refined
-// direction can tie with a resting face while tilted within the plate tolerance: its face would
-// touch the plate along one edge only.
-int tie_rank(const OrientationCandidate& c) {
-  if (c.origin == "as given") return 0;
-  return c.origin == "flat face down" || c.origin == "hull facet" ? 1 : 2;
-}
-
-// The best of the pool: the least score; among scores equal up to rounding, the lowest tie_rank,
+// The best of the pool: the least score; among scores equal up to rounding, the lowest tie rank,
 // then the direction nearest +Z (the smallest turn), then the earliest in the pool. Then the best
 // distinct others.
-void choose_best(const OrientationGeometry& g, const OrientationOptions& o, const std::vector<OrientationCandidate>& pool,
-                 OrientationResult& result) {
+void choose_best(const OrientationGeometry& g, const OrientationOptions& o, const Pool& candidates, OrientationResult& result) {
+  const std::vector<OrientationCandidate>& pool = candidates.scored;
   const double tie = 1e-9 * g.total_area * g.size;
   double least = pool[0].score;
   for (const OrientationCandidate& c : pool) least = std::min(least, c.score);
   size_t best = 0;
   bool found = false;
   auto preferred = [&](size_t k) {
-    const int rank = tie_rank(pool[k]), best_rank = tie_rank(pool[best]);
+    const TieRank rank = candidates.ranks[k], best_rank = candidates.ranks[best];
     return rank != best_rank ? rank < best_rank : pool[k].direction.z() > pool[best].direction.z();
   };
   for (size_t k = 0; k < pool.size(); ++k) {
@@ -362,8 +359,8 @@ OrientationResult optimize_orientation(const CheckedSurface& surface, const Orie
   std::stable_sort(ranked.begin(), ranked.end(), [&](size_t a, size_t b) { return swept[a] < swept[b]; });
   std::vector<Eigen::Vector3d> refined;
   const std::vector<size_t> starts = refine_best(g, o, c, ranked, refined, result.candidates);
-  const std::vector<OrientationCandidate> pool = exact_pool(g, o, c, ranked, starts, refined);
-  result.as_given = pool[0];
+  const Pool pool = exact_pool(g, o, c, ranked, starts, refined);
+  result.as_given = pool.scored[0];
   choose_best(g, o, pool, result);
   const Surface& given = surface.get();
   judge_by_support(result.inside_out ? flipped(given) : given, o, result);
