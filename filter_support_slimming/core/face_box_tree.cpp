@@ -39,16 +39,37 @@ FaceBoxTree::FaceBoxTree(const Surface& surface) : s_(surface) {
   build(0, 0, faces, centroid);
 }
 
+FaceBoxTree::FaceBoxTree(const FaceBoxTree& shape, const Surface& moved)
+    : s_(moved), order_(shape.order_), nodes_(shape.nodes_) {
+  const auto count = static_cast<long>(nodes_.size());
+#pragma omp parallel for schedule(static)
+  for (long id = 0; id < count; ++id)
+    if (nodes_[static_cast<size_t>(id)].left < 0) fit_leaf(nodes_[static_cast<size_t>(id)]);
+  // Pre-order: a node's children come after it, so backwards every child is fitted before it.
+  for (long id = count - 1; id >= 0; --id) {
+    Node& n = nodes_[static_cast<size_t>(id)];
+    if (n.left < 0) continue;
+    const Node &a = nodes_[static_cast<size_t>(n.left)], &b = nodes_[static_cast<size_t>(n.right)];
+    n.lo = a.lo.cwiseMin(b.lo);
+    n.hi = a.hi.cwiseMax(b.hi);
+  }
+}
+
+void FaceBoxTree::fit_leaf(Node& n) const {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+  for (int i = n.first; i < n.first + n.count; ++i)
+    for (int k = 0; k < 3; ++k) {
+      lo = lo.cwiseMin(s_.V.row(s_.F(order_[static_cast<size_t>(i)], k)).transpose());
+      hi = hi.cwiseMax(s_.V.row(s_.F(order_[static_cast<size_t>(i)], k)).transpose());
+    }
+  n.lo = lo, n.hi = hi;
+}
+
 void FaceBoxTree::build(int id, int first, int count, std::vector<Eigen::Vector3d>& centroid) {
   Node& n = nodes_[static_cast<size_t>(id)];
   if (count <= kLeafFaces) {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
-    for (int i = first; i < first + count; ++i)
-      for (int k = 0; k < 3; ++k) {
-        lo = lo.cwiseMin(s_.V.row(s_.F(order_[static_cast<size_t>(i)], k)).transpose());
-        hi = hi.cwiseMax(s_.V.row(s_.F(order_[static_cast<size_t>(i)], k)).transpose());
-      }
-    n.lo = lo, n.hi = hi, n.first = first, n.count = count;
+    n.first = first, n.count = count;
+    fit_leaf(n);
     return;
   }
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;

@@ -4,6 +4,7 @@
 //   const FaceBoxTree tree(surface);
 //   double d = tree.distance(p);            // to the nearest face, exactly
 //   double d = tree.distance(p, &face);     // and which face (-1 for a surface without faces)
+//   const FaceBoxTree moved_tree(tree, moved);  // the same faces moved: the same splits, refit
 //
 // Inputs: a surface (#V by 3 positions in mm, #F by 3 faces; indices checked by the caller), kept
 //   by reference: it must outlive the tree, unchanged.
@@ -17,6 +18,10 @@
 //   shells of cells (uniform_grid.h) cost the cube of that distance in cells: at 1.1M faces the
 //   Hausdorff distance took 2.7 s with them. Cost: O(#F log #F) to build, its subtrees as OpenMP
 //   tasks (the same tree on any thread count); fewer than #F / 2 boxes.
+// Refit (a surface with the same faces, other positions: the same mesh moved): the splits are
+//   kept and only the boxes made anew, leaves first, in O(#F). The distances are as exact as on a
+//   tree of its own; a query only visits more boxes where the faces moved far from where they
+//   were split. A slimmed part's figures use it for the result (surface_distance.h).
 #pragma once
 
 #include <vector>
@@ -30,6 +35,8 @@ namespace slim {
 class FaceBoxTree {
  public:
   explicit FaceBoxTree(const Surface& surface);
+  // The splits of `shape` over `moved`, which has its surface's faces (checked by the caller).
+  FaceBoxTree(const FaceBoxTree& shape, const Surface& moved);
   double distance(const Eigen::Vector3d& p, int* face = nullptr) const;
 
  private:
@@ -40,6 +47,8 @@ class FaceBoxTree {
   };
   // Builds node `id` over the faces order_[first, first + count), its subtree in the nodes after it.
   void build(int id, int first, int count, std::vector<Eigen::Vector3d>& centroid);
+  // The box of leaf n's faces.
+  void fit_leaf(Node& n) const;
   double box_distance(const Node& n, const Eigen::Vector3d& p) const;
 
   const Surface& s_;

@@ -171,7 +171,7 @@ double hausdorff_of_moved(const Surface& a, const Surface& b) {
   if (a.V.rows() != b.V.rows() || a.F.rows() != b.F.rows() || a.F != b.F)
     throw std::invalid_argument("Hausdorff distance of a moved mesh: the two surfaces are not one mesh");
   if (a.F.rows() == 0) return 0.0;
-  const FaceBoxTree tree_a(a), tree_b(b);
+  const FaceBoxTree tree_a(a), tree_b(tree_a, b);  // b: a's faces moved, on a's splits
   std::vector<Unit> units = units_by_move(a, b);
   // Both ways on the units that moved most, then both ways on the rest that moved further than
   // the distance found: sorting all of them took as long as the searches. Each search starts from

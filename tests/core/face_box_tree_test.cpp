@@ -2,7 +2,8 @@
 // against a scan of every face: the same distance to the bit and the same face (ties: the lower),
 // for points near the surface, far outside it and on its vertices (where faces tie), on a bumpy
 // ball, a T with long thin faces, a surface with faces of no area, and none; and on a ball large
-// enough for the tree to be built in parallel, on one thread and on two.
+// enough for the tree to be built in parallel, on one thread and on two; and a tree refit to the
+// same faces moved far from where it split them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -77,5 +78,30 @@ TEST(FaceBoxTree, ALargeSurfaceBuiltOnAnyThreadCountGivesAScansDistance) {
       EXPECT_EQ(tree.distance(points[q], &face), expected[q]) << threads << " threads, " << points[q].transpose();
       EXPECT_EQ(face, expected_face[q]) << threads << " threads, " << points[q].transpose();
     }
+  }
+}
+
+// A bumpy ball's tree refit to the ball twisted by up to 90 degrees about Z and stretched: its
+// leaves keep faces that now lie far apart, and every answer is still the scan's.
+TEST(FaceBoxTree, ARefitTreeOfTheFacesMovedGivesAScansDistance) {
+  std::mt19937 gen(17);
+  std::uniform_real_distribution<double> bump(-0.2, 0.2), near(-15.0, 15.0);
+  Surface ball = test::icosphere(4);
+  for (Eigen::Index v = 0; v < ball.V.rows(); ++v) ball.V.row(v) *= 1.0 + 0.05 * bump(gen);
+  Surface moved = ball;
+  for (Eigen::Index v = 0; v < ball.V.rows(); ++v) {
+    const double z = ball.V(v, 2), turn = M_PI / 2 * z / 20.0;
+    moved.V.row(v) = Eigen::RowVector3d(std::cos(turn) * ball.V(v, 0) - std::sin(turn) * ball.V(v, 1),
+                                        std::sin(turn) * ball.V(v, 0) + std::cos(turn) * ball.V(v, 1), 1.5 * z);
+  }
+  const FaceBoxTree tree(ball);
+  const FaceBoxTree refit(tree, moved);
+  for (int q = 0; q < 600; ++q) {
+    const Eigen::Vector3d p = q < 400 ? Eigen::Vector3d(near(gen), near(gen), 15.0 + 2.0 * near(gen))
+                                      : Eigen::Vector3d(moved.V.row(q % moved.V.rows()).transpose());
+    int expected_face = -1, face = -2;
+    const double expected = scan(moved, p, expected_face);
+    EXPECT_EQ(refit.distance(p, &face), expected) << p.transpose();
+    EXPECT_EQ(face, expected_face) << p.transpose();
   }
 }
