@@ -48,10 +48,7 @@ FaceBoxTree::FaceBoxTree(const FaceBoxTree& shape, const Surface& moved)
   // Pre-order: a node's children come after it, so backwards every child is fitted before it.
   for (long id = count - 1; id >= 0; --id) {
     Node& n = nodes_[static_cast<size_t>(id)];
-    if (n.left < 0) continue;
-    const Node &a = nodes_[static_cast<size_t>(n.left)], &b = nodes_[static_cast<size_t>(n.right)];
-    n.lo = a.lo.cwiseMin(b.lo);
-    n.hi = a.hi.cwiseMax(b.hi);
+    if (n.left >= 0) fit_inner(n);
   }
 }
 
@@ -63,6 +60,12 @@ void FaceBoxTree::fit_leaf(Node& n) const {
       hi = hi.cwiseMax(s_.V.row(s_.F(order_[static_cast<size_t>(i)], k)).transpose());
     }
   n.lo = lo, n.hi = hi;
+}
+
+void FaceBoxTree::fit_inner(Node& n) const {
+  const Node &a = nodes_[static_cast<size_t>(n.left)], &b = nodes_[static_cast<size_t>(n.right)];
+  n.lo = a.lo.cwiseMin(b.lo);
+  n.hi = a.hi.cwiseMax(b.hi);
 }
 
 void FaceBoxTree::build(int id, int first, int count, std::vector<Eigen::Vector3d>& centroid) {
@@ -91,9 +94,7 @@ void FaceBoxTree::build(int id, int first, int count, std::vector<Eigen::Vector3
   build(n.left, first, count / 2, centroid);
   build(n.right, first + count / 2, count - count / 2, centroid);
 #pragma omp taskwait
-  const Node &a = nodes_[static_cast<size_t>(n.left)], &b = nodes_[static_cast<size_t>(n.right)];
-  n.lo = a.lo.cwiseMin(b.lo);
-  n.hi = a.hi.cwiseMax(b.hi);
+  fit_inner(n);
 }
 
 double FaceBoxTree::box_distance(const Node& n, const Eigen::Vector3d& p) const {

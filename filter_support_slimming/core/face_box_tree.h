@@ -47,8 +47,9 @@ class FaceBoxTree {
   };
   // Builds node `id` over the faces order_[first, first + count), its subtree in the nodes after it.
   void build(int id, int first, int count, std::vector<Eigen::Vector3d>& centroid);
-  // The box of leaf n's faces.
+  // The box of leaf n's faces; of inner node n's two children's boxes.
   void fit_leaf(Node& n) const;
+  void fit_inner(Node& n) const;
   double box_distance(const Node& n, const Eigen::Vector3d& p) const;
 
   const Surface& s_;

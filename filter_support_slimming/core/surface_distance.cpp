@@ -17,6 +17,22 @@ namespace {
 
 Eigen::Vector3d corner(const Surface& s, Eigen::Index f, int k) { return s.V.row(s.F(f, k)).transpose(); }
 
+// The samples of one vertex (id < #V) or face (id = #V + f) of s: the vertex, or the face's
+// centroid and its three edge midpoints. Returns their count. samples() makes them the same way.
+int unit_samples(const Surface& s, Eigen::Index id, Eigen::Vector3d out[4]) {
+  if (id < s.V.rows()) {
+    out[0] = s.V.row(id).transpose();
+    return 1;
+  }
+  const Eigen::Index f = id - s.V.rows();
+  const Eigen::Vector3d a = corner(s, f, 0), b = corner(s, f, 1), c = corner(s, f, 2);
+  out[0] = (a + b + c) / 3.0;
+  out[1] = 0.5 * (a + b);
+  out[2] = 0.5 * (b + c);
+  out[3] = 0.5 * (c + a);
+  return 4;
+}
+
 // The samples of a surface: the vertices that faces use (a vertex of no face is no part of the
 // surface, and the moved search's bound, how far a sample moved, holds only on the surface), face
 // centroids, edge midpoints (each edge once per face).
@@ -26,12 +42,10 @@ Points samples(const Surface& s) {
   Points P(count + 4 * s.F.rows(), 3);
   for (Eigen::Index k = 0; k < count; ++k) P.row(k) = s.V.row(vertices[static_cast<size_t>(k)]);
   Eigen::Index row = count;
+  Eigen::Vector3d face[4];
   for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
-    const Eigen::Vector3d a = corner(s, f, 0), b = corner(s, f, 1), c = corner(s, f, 2);
-    P.row(row++) = ((a + b + c) / 3.0).transpose();
-    P.row(row++) = (0.5 * (a + b)).transpose();
-    P.row(row++) = (0.5 * (b + c)).transpose();
-    P.row(row++) = (0.5 * (c + a)).transpose();
+    unit_samples(s, s.V.rows() + f, face);
+    for (const Eigen::Vector3d& p : face) P.row(row++) = p.transpose();
   }
   return P;
 }
@@ -69,22 +83,6 @@ std::vector<Unit> units_by_move(const Surface& a, const Surface& b) {
     units[vertices.size() + static_cast<size_t>(f)] = {
         std::max({moved(a.F(f, 0)), moved(a.F(f, 1)), moved(a.F(f, 2))}), a.V.rows() + f};
   return units;
-}
-
-// The samples of one unit on surface s, as samples() makes them (the same arithmetic, so the same
-// points): a vertex, or a face's centroid and its three edge midpoints. Returns their count.
-int unit_samples(const Surface& s, Eigen::Index id, Eigen::Vector3d out[4]) {
-  if (id < s.V.rows()) {
-    out[0] = s.V.row(id).transpose();
-    return 1;
-  }
-  const Eigen::Index f = id - s.V.rows();
-  const Eigen::Vector3d a = corner(s, f, 0), b = corner(s, f, 1), c = corner(s, f, 2);
-  out[0] = (a + b + c) / 3.0;
-  out[1] = 0.5 * (a + b);
-  out[2] = 0.5 * (b + c);
-  out[3] = 0.5 * (c + a);
-  return 4;
 }
 
 // The largest distance from the samples of the given units of `from` to the surface of `tree`
