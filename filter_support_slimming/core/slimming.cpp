@@ -161,7 +161,8 @@ std::string iterate(SupportSlimmer& slimmer, const Surface& input, SupportModel*
       st.crease_share_pct = creases->share_pct(slimmer.surface_positions());
       r.stage_seconds.creases += seconds_since(crease_started);
     } else if (creases) {
-      st.crease_share_pct = std::nan("");  // needs more support than the best: never chosen
+      st.crease_share_pct = std::nan("");  // more support than the least so far (or than the
+                                           // input's less the least saving): never chosen
     }
     r.history.push_back(st);
     const double previous_deficit = r.history[r.history.size() - 2].risky_deficit;

@@ -201,7 +201,8 @@ struct IterationStats {
   double support_slicer_phase = 0.0;
   // % of the interior edge length creased against the input (shape_metrics.h); 0 when the run
   // does not measure it (CoherenceOptions::max_crease_share_pct off), NaN for an iterate that
-  // needed more support than the best before it (it cannot be chosen: not measured).
+  // cannot be chosen, so is not measured: it needed more support than the least so far, which
+  // before any iterate qualifies is the input's less min_support_saving_pct (result_choice.h).
   double crease_share_pct = 0.0;
   double energy = 0.0;             // ARAP energy of the accepted positions for this iteration's L_t
   // The global step alone: ARAP energy for this iteration's L_t at the positions it started from,
