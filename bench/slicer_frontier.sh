@@ -17,7 +17,10 @@
 #                 model's estimates of both files (bench/support_model_tool); the column is left
 #                 out, never filled with a placeholder, when neither is there. Twice: the mean
 #                 over grid phases (what the run minimises) and at the slicer's own phase (the
-#                 part as placed: the prediction for these files).
+#                 part as placed: the prediction for these files). And a third time as the judge
+#                 measures the slicers: at the slicer's own phase, the mean of the turns 0° and
+#                 90° about the print axis (a quarter turn lays the support lines along the part's
+#                 other axis; 180° and 270° repeat them), by bench/support_model_tool on both files.
 # Writes OUT/frontier.tsv (every figure, one row per run), OUT/frontier.md (the table) and, with
 # gnuplot, a plot of support cut against Hausdorff distance per model (--plot, default
 # OUT/frontier.png). Every run is cached in OUT/<model>/<method>_<budget>/: a second call only
@@ -144,27 +147,43 @@ for name in "${names[@]}"; do
   echo "[frontier] $name: $((SECONDS - t0)) s" >&2
 done
 
+# judged_change NAME METHOD BUDGET: the model's change input -> result at the slicer's own phase,
+# mean of the quarter turns 0° and 90° (the judge's protocol); empty without the model's tool or
+# the run's files. Each estimate is cached beside its mesh.
+judged_change() {
+  local in_dir="$out/$1/input" dir="$out/$1/$2_$3" d
+  [ -x "$model_tool" ] && [ -f "$dir/result.ply" ] || return 0
+  for d in "$in_dir" "$dir"; do
+    [ -s "$d/model_judged.txt" ] || "$model_tool" estimate "$d/$( [ "$d" = "$in_dir" ] && echo input || echo result).ply" \
+      --angle 45 --phases 1 --turns 2 >"$d/model_judged.txt" || return 0
+  done
+  pct "$(kv "$in_dir/model_judged.txt" volume_mm3)" "$(kv "$dir/model_judged.txt" volume_mm3)"
+}
+
 # ---- the table ----------------------------------------------------------------------------------
 tsv="$out/frontier.tsv"
-printf 'model\tkind\tmethod\tbudget_pct\tprusa_change_pct\tcura_change_pct\thausdorff_pct\tvolume_change_pct\tcrease_share_pct\tcrease_p99_deg\tmodel_change_pct\tprusa_before_mm3\tprusa_after_mm3\tslim_s\trun_s\tmodel_slicer_phase_change_pct\n' >"$tsv"
+printf 'model\tkind\tmethod\tbudget_pct\tprusa_change_pct\tcura_change_pct\thausdorff_pct\tvolume_change_pct\tcrease_share_pct\tcrease_p99_deg\tmodel_change_pct\tprusa_before_mm3\tprusa_after_mm3\tslim_s\trun_s\tmodel_slicer_phase_change_pct\tmodel_judged_change_pct\n' >"$tsv"
 missing=0
 for name in "${names[@]}"; do
   kind="$(awk -F'\t' -v n="$name" '$1 == n { print $2 }' "$corpus/manifest.tsv")"
   for method in "${method_list[@]}"; do
     for budget in "${budget_list[@]}"; do
       row="$out/$name/${method}_$budget/row.tsv"
-      if [ -s "$row" ]; then awk -F'\t' -v OFS='\t' -v k="$kind" '{ $1 = $1 OFS k; print }' "$row" >>"$tsv"; else missing=$((missing + 1)); fi
+      if [ -s "$row" ]; then
+        awk -F'\t' -v OFS='\t' -v k="$kind" -v j="$(judged_change "$name" "$method" "$budget")" \
+          '{ $15 = $15 OFS j; $1 = $1 OFS k; print }' "$row" >>"$tsv"
+      else missing=$((missing + 1)); fi
     done
   done
 done
 [ "$missing" -eq 0 ] || echo "[frontier] $missing runs not made yet (left out of the table)" >&2
 with_model="$(awk -F'\t' 'NR > 1 && $11 != "" { print "yes"; exit }' "$tsv")"
 {
-  echo "| model | kind | method | budget | PrusaSlicer | Cura | Hausdorff (% diag) | volume | crease share (p99) |$( [ -z "$with_model" ] || echo " support model | at the slicer's phase |")"
-  echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |$( [ -z "$with_model" ] || echo " ---: | ---: |")"
+  echo "| model | kind | method | budget | PrusaSlicer | Cura | Hausdorff (% diag) | volume | crease share (p99) |$( [ -z "$with_model" ] || echo " support model | at the slicer's phase | judged as the slicers (phase, quarter turns) |")"
+  echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |$( [ -z "$with_model" ] || echo " ---: | ---: | ---: |")"
   awk -F'\t' -v m="$with_model" 'NR > 1 {
     line = sprintf("| %s | %s | %s | %s%% | %s%% | %s%% | %s | %s%% | %s%% (%s°) |", $1, $2, $3, $4, $5, $6, $7, $8, $9, $10)
-    if (m != "") line = line sprintf(" %s%% | %s |", $11, $16 == "" ? "n/a" : $16 "%")
+    if (m != "") line = line sprintf(" %s%% | %s | %s |", $11, $16 == "" ? "n/a" : $16 "%", $17 == "" ? "n/a" : $17 "%")
     print line }' "$tsv"
 } >"$out/frontier.md"
 cat "$out/frontier.md"
