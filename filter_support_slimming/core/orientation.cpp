@@ -103,7 +103,9 @@ void judge_by_support(const Surface& oriented, const OrientationOptions& o, Orie
   std::rotate(result.top.begin(), result.top.begin() + static_cast<std::ptrdiff_t>(best),
               result.top.begin() + static_cast<std::ptrdiff_t>(best) + 1);
   // The pose as given is a candidate too: no turn at all when it needs clearly less support than
-  // every pose the score ranked first (a duck of the corpus: 1.3% more support turned).
+  // every pose the score ranked first. The corpus's duck: its best turn needs 1.6% more by the
+  // model (3,527 against 3,472 mm³) and 4.3% more by PrusaSlicer; half a point less and the score
+  // would turn it.
   const double given = result.as_given.support_estimate, turned = result.top.front().support_estimate;
   if (given >= 0.0 && (turned < 0.0 || given < turned - (0.01 * turned + 1.0)))
     result.top.insert(result.top.begin(), result.as_given);
