@@ -151,11 +151,11 @@ done
 # mean of the quarter turns 0° and 90° (the judge's protocol); empty without the model's tool or
 # the run's files. Each estimate is cached beside its mesh.
 judged_change() {
-  local in_dir="$out/$1/input" dir="$out/$1/$2_$3" d
+  local in_dir="$out/$1/input" dir="$out/$1/$2_$3" mesh
   [ -x "$model_tool" ] && [ -f "$dir/result.ply" ] || return 0
-  for d in "$in_dir" "$dir"; do
-    [ -s "$d/model_judged.txt" ] || "$model_tool" estimate "$d/$( [ "$d" = "$in_dir" ] && echo input || echo result).ply" \
-      --angle 45 --phases 1 --turns 2 >"$d/model_judged.txt" || return 0
+  for mesh in "$in_dir/input.ply" "$dir/result.ply"; do
+    [ -s "${mesh%/*}/model_judged.txt" ] ||
+      "$model_tool" estimate "$mesh" --angle 45 --phases 1 --turns 2 >"${mesh%/*}/model_judged.txt" || return 0
   done
   pct "$(kv "$in_dir/model_judged.txt" volume_mm3)" "$(kv "$dir/model_judged.txt" volume_mm3)"
 }
