@@ -110,7 +110,8 @@ std::vector<DihedralEdge> dihedral_edges(const Surface& s) {
 }
 
 CreaseMeter::CreaseMeter(const Surface& input, const ShapeChangeOptions& options)
-    : F_(input.F), vertices_(input.V.rows()), options_(options), edges_(dihedral_edges(input)) {
+    : F_(input.F), vertices_(input.V.rows()), options_(options), edges_(dihedral_edges(input)),
+      volume_input_(signed_volume(input)) {
   if (!(options.crease_threshold_deg >= 0.0 && options.crease_threshold_deg < 180.0))
     throw std::invalid_argument("shape change: the crease threshold must lie in [0, 180) degrees");
   const auto count = static_cast<long>(edges_.size());
@@ -145,6 +146,10 @@ void CreaseMeter::measure(const Points& V, ShapeChange& out) const {
   std::vector<double> change, length;
   std::vector<char> measured;
   changes(V, change, measured);
+  out.volume_input = volume_input_;
+  out.volume_result = signed_volume(Surface{V, F_});
+  out.volume_defined = out.volume_input != 0.0 && std::isfinite(out.volume_input);
+  out.volume_change_pct = out.volume_defined ? 100.0 * (out.volume_result / out.volume_input - 1.0) : 0.0;
   double creased = 0.0, total = 0.0;
   out.max_crease_deg = 0.0;
   for (size_t k = 0; k < edges_.size(); ++k) {
@@ -208,13 +213,8 @@ ShapeChange shape_change(const Surface& input, const Surface& result, const Shap
   require_same_vertex_count(input.V.rows(), result.V.rows());
   if (input.F.rows() != result.F.rows() || input.F != result.F)
     throw std::invalid_argument("shape change: the input and the result do not have the same faces");
-  const CreaseMeter meter(input, options);
   ShapeChange out;
-  out.volume_input = signed_volume(input);
-  out.volume_result = signed_volume(result);
-  out.volume_defined = out.volume_input != 0.0 && std::isfinite(out.volume_input);
-  if (out.volume_defined) out.volume_change_pct = 100.0 * (out.volume_result / out.volume_input - 1.0);
-  meter.measure(result.V, out);
+  CreaseMeter(input, options).measure(result.V, out);
   return out;
 }
 

@@ -64,13 +64,13 @@ std::vector<DihedralEdge> dihedral_edges(const Surface& s);
 ShapeChange shape_change(const Surface& input, const Surface& result, const ShapeChangeOptions& options = {});
 
 // The crease share of many results of one input, measured again and again (the optimizer's check
-// on every iterate): the input's interior manifold edges, their lengths and dihedral angles are
-// found once; share_pct() then costs O(#V + #F + #E), on the OpenMP threads; measure() adds the
-// percentile's sort of the edges' changes.
+// on every iterate, then its result's figures): the input's interior manifold edges, their lengths
+// and dihedral angles, and its volume, are found once; share_pct() then costs O(#V + #F + #E), on
+// the OpenMP threads; measure() adds the result's volume and the percentile's partition of the
+// edges' changes.
 //   CreaseMeter meter(input, options);     // input as for shape_change
-//   meter.measure(result_V, out);           // #V by 3 (mm), the input's faces: fills out's
-//                                           // crease_share_pct, crease_p99_deg, max_crease_deg,
-//                                           // interior_edges as shape_change() does
+//   meter.measure(result_V, out);           // #V by 3 (mm), the input's faces: fills all of out
+//                                           // as shape_change() does (it is that call's meter)
 //   meter.share_pct(result_V)               // crease_share_pct alone (%), the same value but
 //                                           // for an edge within rounding of the threshold
 //                                           // (it reuses the meter's buffers: one thread at a
@@ -91,6 +91,7 @@ class CreaseMeter {
   std::vector<DihedralEdge> edges_;  // the input's, with their angles
   std::vector<double> length_;       // the input's edge lengths (mm)
   std::vector<double> cos_in_, sin_in_;  // of the input's angles
+  double volume_input_;              // mm³, signed
   // share_pct's buffers, kept from call to call: one meter serves one thread at a time.
   using RowPoints = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
   mutable RowPoints cross_;

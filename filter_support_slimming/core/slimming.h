@@ -41,6 +41,7 @@
 #include <Eigen/Core>
 
 #include "core/overhang.h"
+#include "core/shape_metrics.h"
 #include "core/surface.h"
 
 namespace slim {
@@ -231,6 +232,7 @@ struct SlimmingStageSeconds {  // wall time per stage, summed over iterations
   double measure = 0.0;         // the step guards, write-back to the surface and the statistics
   double support_model = 0.0;   // the support model's estimate of every iterate (choose_by_support_model)
   double creases = 0.0;         // the crease share of the iterates that may be chosen (max_crease_share_pct)
+                                // and the result's shape change (SlimmingResult::shape)
 };
 
 struct SlimmingResult {
@@ -256,6 +258,9 @@ struct SlimmingResult {
                                       // which slicers close or drop slice by slice (as the model does)
   Eigen::VectorXd displacement;       // #V, mm
   double volume_before = 0.0, volume_after = 0.0;  // signed enclosed volume, mm³
+  // What the shape paid, the result against the input (shape_metrics.h's shape_change: volume
+  // change, crease share, its 99th percentile), measured with the run's own crease meter.
+  ShapeChange shape;
   double deviation_budget_mm = 0.0;   // the budget the run held to (0: none)
   int domain_vertices = 0, domain_tets = 0;
   std::string solver_backend;

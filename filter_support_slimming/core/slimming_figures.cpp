@@ -1,6 +1,5 @@
 #include "core/slimming_figures.h"
 
-#include "core/shape_metrics.h"
 #include "core/surface_distance.h"
 
 namespace slim {
@@ -22,7 +21,7 @@ SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& r,
   f.shadow_volume_after_mm3 = r.after.shadow_volume;
   f.risky_area_before_mm2 = r.before.risky_area;
   f.risky_area_after_mm2 = r.after.risky_area;
-  const ShapeChange shape = shape_change(before, r.surface);
+  const ShapeChange& shape = r.shape;  // measured by the run, with the crease meter it had built
   f.volume_before_mm3 = shape.volume_input;
   f.volume_after_mm3 = shape.volume_result;
   f.volume_change_pct = shape.volume_change_pct;

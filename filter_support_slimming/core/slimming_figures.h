@@ -10,9 +10,9 @@
 //   reference_diagonal  the bounding-box diagonal (mm) the percentages are of: the part as the
 //                       user gave it (the pose does not change the budget; oriented_slimming.h).
 // Output (SlimmingFigures): mm, mm², mm³ and %; support_* from the support model (0 when the run
-//   did not measure it); the shape's cost from shape_metrics.h (volume, creases) and
-//   surface_distance.h (the Hausdorff distance of the slimming); the budget as given and as a
-//   length. Cost: one crease pass and one distance pass over the surfaces.
+//   did not measure it); the shape's cost from result.shape (the run's shape_metrics.h figures:
+//   volume, creases) and surface_distance.h (the Hausdorff distance of the slimming); the budget
+//   as given and as a length. Cost: one distance pass over the surfaces.
 #pragma once
 
 #include <string>

@@ -187,6 +187,16 @@ TEST(Slimming, ArchOpeningIsSlimmedWithinTheCreaseLimit) {
   const ShapeChange limited_shape = shape_change(arch, limited.surface), free_shape = shape_change(arch, free.surface);
   EXPECT_LE(limited_shape.crease_share_pct, limit);
   EXPECT_NEAR(limited.history.back().crease_share_pct, limited_shape.crease_share_pct, 1e-9);
+  // What the run says the shape paid (the figures read it) is what a fresh measure finds, with the
+  // crease limit (its meter measured the iterates first) and without (built for the result alone).
+  for (const auto& [run, fresh] : {std::pair{&limited, &limited_shape}, std::pair{&free, &free_shape}}) {
+    EXPECT_EQ(run->shape.crease_share_pct, fresh->crease_share_pct);
+    EXPECT_EQ(run->shape.crease_p99_deg, fresh->crease_p99_deg);
+    EXPECT_EQ(run->shape.max_crease_deg, fresh->max_crease_deg);
+    EXPECT_EQ(run->shape.interior_edges, fresh->interior_edges);
+    EXPECT_EQ(run->shape.volume_change_pct, fresh->volume_change_pct);
+    EXPECT_EQ(run->shape.volume_result, fresh->volume_result);
+  }
   EXPECT_GT(free_shape.crease_share_pct, limit) << "the arch no longer tests the limit";
   EXPECT_LT(limited.support_after_mm3, 0.95 * limited.support_before_mm3);
   EXPECT_LT(free.support_after_mm3, limited.support_after_mm3);
@@ -270,12 +280,33 @@ TEST(Slimming, EveryGlobalStepMinimisesItsOwnEnergy) {
   }
 }
 
+// A part given inside out is slimmed turned over (slim_supports), and what its shape paid is the
+// part's: the volumes of the part (positive), the change and the creases as for the part given
+// the right way out.
+TEST(Slimming, AnInsideOutPartsShapeChangeIsThePartsOwn) {
+  const Surface t = test::refined(test::t_shape(), 3);
+  const SlimmingResult r = slim_supports(flipped(t), {});
+  ASSERT_TRUE(r.inside_out);
+  ASSERT_GT(r.iterations, 0) << r.stop_reason;
+  const ShapeChange part = shape_change(t, Surface{r.surface.V, t.F});
+  EXPECT_GT(r.shape.volume_input, 0.0);
+  EXPECT_NEAR(r.shape.volume_input, part.volume_input, 1e-9 * part.volume_input);
+  EXPECT_NEAR(r.shape.volume_change_pct, part.volume_change_pct, 1e-9);
+  EXPECT_NEAR(r.shape.crease_share_pct, part.crease_share_pct, 1e-9);
+  EXPECT_NEAR(r.shape.crease_p99_deg, part.crease_p99_deg, 1e-9);
+  EXPECT_EQ(r.shape.interior_edges, part.interior_edges);
+  EXPECT_GT(r.shape.crease_p99_deg, 0.0) << "the T no longer bends";
+}
+
 TEST(Slimming, SafeMeshComesBackUnchanged) {
   const Surface cube = test::box({0, 0, 0}, {10, 10, 10});
   const SlimmingResult r = slim_supports(cube, {});
   EXPECT_EQ(r.iterations, 0);
   EXPECT_LE((r.surface.V - cube.V).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_EQ(r.history.size(), 1u);
+  EXPECT_EQ(r.shape.crease_share_pct, 0.0);  // unchanged: the shape paid nothing
+  EXPECT_EQ(r.shape.volume_change_pct, 0.0);
+  EXPECT_EQ(r.shape.interior_edges, 3 * 12 / 2);
 }
 
 TEST(Slimming, ZeroIterationsEmbedsAndWritesBack) {
