@@ -93,7 +93,6 @@ void LocalStep::run(const Points& V, LocalStepState& s) const {
       }
     }
     if (!minimal_found) return;
-    if (triage > 0.0 && pr.solution.angle > triage) return;
     s.extra[ts] = Eigen::AngleAxisd(std::min(pr.solution.angle, max_step), pr.solution.axis).toRotationMatrix();
   });
 }

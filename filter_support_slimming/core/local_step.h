@@ -63,7 +63,7 @@ struct LocalStep {
   TetPieces pieces;
   Points rest_normals;
   Eigen::Vector3d d = Eigen::Vector3d::UnitZ();
-  double tau = 0.0, max_step = 0.0, edge_slack = 0.0, triage = 0.0;
+  double tau = 0.0, max_step = 0.0, edge_slack = 0.0;
   std::vector<Eigen::Vector3d> tie, edge_axis;
   std::vector<bool> skip;
   ProxyOptions proxies;

@@ -86,7 +86,6 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   local_.tau = std::sin(std::max(0.0, o.alpha_max_deg - margin_of(o)) * M_PI / 180.0);
   local_.max_step = max_step_of(o) * M_PI / 180.0;
   local_.edge_slack = coherence_.edge_turn_slack_deg * M_PI / 180.0;
-  local_.triage = coherence_.triage_deg * M_PI / 180.0;
   local_.proxies.max_k = o.max_k;
   {
     ScopedSeconds timer(times_.local);  // the local step's input

@@ -98,11 +98,6 @@ struct CoherenceOptions {
   // PrusaSlicer's grid support at the print direction and alpha_max); false (and in the Paper
   // method): by the shadow volume (result_choice.h).
   bool choose_by_support_model = true;
-  // Triage: a tet whose minimal turn exceeds this angle (degrees) gets no extra rotation, as an
-  // overhang the budget cannot make self-supporting costs shape and saves no support once the
-  // slicer closes its footprint; 0 = off. Off by default: at 30 degrees it saved no more support by
-  // the support model on the corpus (docs/slicer-frontier.md).
-  double triage_deg = 0.0;
   // The shape's smoothness as a limit: an iterate whose crease share against the input (% of the
   // interior edge length whose dihedral angle changed by more than 10 degrees, shape_metrics.h)
   // exceeds this is never returned; 0 = off. The share grows with the iterations, and where it
