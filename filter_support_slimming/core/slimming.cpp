@@ -137,7 +137,7 @@ std::string choice_note(const IterateChoice& choice, const CoherenceOptions& c, 
 }
 
 // The iterations under the stopping rule; the best iterate goes into r.
-// The crease meter is the run's (shape_paid measures the result with it after).
+// The crease meter is the run's: after the iterations it measures the result too (slim_oriented).
 std::string iterate(SupportSlimmer& slimmer, const CreaseMeter& creases, SupportModel* model, const SlimmingOptions& o,
                     const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
   const CoherenceOptions coherence = coherence_of(o);
