@@ -127,9 +127,8 @@ CreaseMeter::CreaseMeter(const Surface& input, const ShapeChangeOptions& options
   }
 }
 
-void CreaseMeter::changes(const Points& V, std::vector<double>& change, std::vector<char>& measured) const {
-  require_same_vertex_count(vertices_, V.rows());
-  const Surface result{V, F_};
+void CreaseMeter::changes(const Surface& result, std::vector<double>& change, std::vector<char>& measured) const {
+  require_same_vertex_count(vertices_, result.V.rows());
   const Points n = face_normals(result);
   change.assign(edges_.size(), 0.0);
   measured.assign(edges_.size(), 0);
@@ -145,9 +144,10 @@ void CreaseMeter::changes(const Points& V, std::vector<double>& change, std::vec
 void CreaseMeter::measure(const Points& V, ShapeChange& out) const {
   std::vector<double> change, length;
   std::vector<char> measured;
-  changes(V, change, measured);
+  const Surface result{V, F_};
+  changes(result, change, measured);
   out.volume_input = volume_input_;
-  out.volume_result = signed_volume(Surface{V, F_});
+  out.volume_result = signed_volume(result);
   out.volume_defined = out.volume_input != 0.0 && std::isfinite(out.volume_input);
   out.volume_change_pct = out.volume_defined ? 100.0 * (out.volume_result / out.volume_input - 1.0) : 0.0;
   double creased = 0.0, total = 0.0;

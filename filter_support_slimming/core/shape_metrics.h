@@ -84,7 +84,7 @@ class CreaseMeter {
 
  private:
   // The change of each measured edge's angle; false for an edge a result's zero-area face drops.
-  void changes(const Points& result_V, std::vector<double>& change, std::vector<char>& measured) const;
+  void changes(const Surface& result, std::vector<double>& change, std::vector<char>& measured) const;
   Triangles F_;
   Eigen::Index vertices_;
   ShapeChangeOptions options_;

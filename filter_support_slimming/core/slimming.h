@@ -252,9 +252,9 @@ struct SlimmingResult {
   long open_edges = 0;                // edges of the input used by one face: the borders of holes,
                                       // which slicers close or drop slice by slice (as the model does)
   Eigen::VectorXd displacement;       // #V, mm
-  double volume_before = 0.0, volume_after = 0.0;  // signed enclosed volume, mm³
-  // What the shape paid, the result against the input (shape_metrics.h's shape_change: volume
-  // change, crease share, its 99th percentile), measured with the run's own crease meter.
+  // What the shape paid, the result against the input (shape_metrics.h's shape_change: the signed
+  // enclosed volumes in mm³ and their change, the crease share, its 99th percentile), measured
+  // with the run's own crease meter.
   ShapeChange shape;
   double deviation_budget_mm = 0.0;   // the budget the run held to (0: none)
   int domain_vertices = 0, domain_tets = 0;

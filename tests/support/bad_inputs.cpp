@@ -326,7 +326,7 @@ std::string slimming_result_problem(const Surface& input, const SlimmingOptions&
     why << "the reported risky area " << r.after.risky_area << " re-measures as " << now.risky_area << "; ";
   if (r.after.risky_area > r.before.risky_area + slack)
     why << "the risky area grew from " << r.before.risky_area << " to " << r.after.risky_area << "; ";
-  if (!std::isfinite(r.volume_before) || !std::isfinite(r.volume_after)) why << "non-finite volume; ";
+  if (!std::isfinite(r.shape.volume_input) || !std::isfinite(r.shape.volume_result)) why << "non-finite volume; ";
   for (const IterationStats& st : r.history)
     if (!std::isfinite(st.risky_area) || !std::isfinite(st.energy) || !std::isfinite(st.max_displacement) ||
         !std::isfinite(st.approximation_error))
