@@ -25,7 +25,7 @@ int scaled(int count) {
   return scale ? count * std::max(1, std::atoi(scale)) : count;
 }
 
-enum class Mix { Uniform, AroundDown, Groups, AntipodalPairs, NearDuplicates, TightCluster };
+enum class Mix { Uniform, AroundDown, Groups, AntipodalPairs, NearDuplicates, TightCluster, FloatGroups };
 
 // A random risky-looking patch: around a downward direction within 60° of -d.
 Eigen::Matrix3Xd around_down(std::mt19937& rng, int n, const Eigen::Vector3d& d) {
@@ -56,6 +56,17 @@ Eigen::Matrix3Xd random_normals(std::mt19937& rng, Mix mix, int n, const Eigen::
     case Mix::TightCluster: {  // a scan's tet: a hundred normals or more within a degree or two
       std::uniform_real_distribution<double> spread(0.1 * kDeg, 2.0 * kDeg);
       return random_normals_in_cap(rng, n, random_in_cap(rng, -d, 60 * kDeg), spread(rng));
+    }
+    case Mix::FloatGroups: {  // a dense mesh's tet: groups of 2-6 normals 1e-5..1e-4 apart (a
+                              // subdivided face, vertices stored as floats), the groups within 1-10°
+      std::uniform_real_distribution<double> spread(1.0 * kDeg, 10.0 * kDeg);
+      const Eigen::Matrix3Xd centres = random_normals_in_cap(rng, n, random_in_cap(rng, -d, 60 * kDeg), spread(rng));
+      Eigen::Matrix3Xd normals(3, n);
+      for (int i = 0, group = 0; i < n; ++group) {
+        const int size = std::min(n - i, 2 + static_cast<int>(unit(rng) * 5));
+        for (int k = 0; k < size; ++k, ++i) normals.col(i) = random_in_cap(rng, centres.col(group), std::pow(10.0, -5.0 + unit(rng)));
+      }
+      return normals;
     }
     case Mix::NearDuplicates: {  // exact copies and copies moved by 1e-12..1e-6 radians
       Eigen::Matrix3Xd normals = around_down(rng, n, d);
@@ -103,7 +114,7 @@ SweepCount sweep(Mix mix, int instances, int min_n, int max_n, unsigned seed) {
 
 }  // namespace
 
-// ---- exactness: 20,600 random instances against the reference --------------------------------
+// ---- exactness: 20,900 random instances against the reference --------------------------------
 
 TEST(MinRotationExact, UniformNormals) {
   const SweepCount seen = sweep(Mix::Uniform, scaled(4000), 1, 100, 101);
@@ -137,6 +148,13 @@ TEST(MinRotationExact, NearDuplicates) {
 // the answer comes from a few of them at a time (an active set), checked against all.
 TEST(MinRotationExact, TightClustersOfAScansTet) {
   const SweepCount seen = sweep(Mix::TightCluster, scaled(300), 24, 400, 707);
+  EXPECT_GT(seen.feasible, 250);
+}
+
+// The same with the normals of a dense surface in tight groups: the active set takes one of a
+// group at a time, and the answer must still be the reference's.
+TEST(MinRotationExact, GroupsOfADenseSurfacesTet) {
+  const SweepCount seen = sweep(Mix::FloatGroups, scaled(300), 24, 400, 808);
   EXPECT_GT(seen.feasible, 250);
 }
 
