@@ -6,12 +6,25 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 
 #include "core/parallel_for.h"
 
 namespace slim {
 namespace {
+
+// Owner of each item (items 0..n-1 in order) listed per owner, items in increasing order: a
+// counting sort.
+template <class OwnerOf>
+void list_by_owner(int owners, int items, OwnerOf owner_of, std::vector<int>& begin, std::vector<int>& item) {
+  begin.assign(static_cast<size_t>(owners) + 1, 0);
+  for (int i = 0; i < items; ++i) ++begin[static_cast<size_t>(owner_of(i)) + 1];
+  for (int o = 0; o < owners; ++o) begin[static_cast<size_t>(o) + 1] += begin[static_cast<size_t>(o)];
+  item.resize(static_cast<size_t>(items));
+  std::vector<int> fill(begin.begin(), begin.end() - 1);
+  for (int i = 0; i < items; ++i) item[static_cast<size_t>(fill[static_cast<size_t>(owner_of(i))]++)] = i;
+}
 
 void require_in_range(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("volume keeping: " + what);
@@ -24,87 +37,92 @@ Eigen::Vector4d cubic_terms(const Eigen::RowVector3d& a, const Eigen::RowVector3
           a.dot(q.cross(r)) + p.dot(b.cross(r)) + p.dot(q.cross(c)), p.dot(q.cross(r))};
 }
 
-// The faces' minors summed per node triple. Faces are grouped by the tets their corners lie in
-// (one tet for most faces; a face across tets has up to 12 nodes): a group's nodes in increasing
-// order and, for each three of them, the summed minor.
-class NodeTriples {
- public:
-  void add(const Embedding& e, int a, int b, int c) {
-    const Group& g = group_of(e, {a, b, c});
-    Eigen::Matrix<double, 3, 12> w = Eigen::Matrix<double, 3, 12>::Zero();
-    const std::array<int, 3> corners{a, b, c};
-    for (int r = 0; r < 3; ++r)
-      for (int k = 0; k < 4; ++k) {
-        const int node = e.vertex_nodes(corners[static_cast<size_t>(r)], k);
-        const auto at = std::lower_bound(g.nodes.begin(), g.nodes.begin() + g.count, node) - g.nodes.begin();
-        w(r, at) += e.vertex_bary(corners[static_cast<size_t>(r)], k);
-      }
-    size_t slot = g.first;
-    for (int i = 0; i < g.count; ++i)
-      for (int j = i + 1; j < g.count; ++j)
-        for (int k = j + 1; k < g.count; ++k, ++slot) {
-          Eigen::Matrix3d minor;
-          minor << w.col(i), w.col(j), w.col(k);
-          triples_[slot].coefficient += minor.determinant();
-        }
-  }
-
-  std::vector<VolumeKeeping::Triple> take() { return std::move(triples_); }
-
- private:
+// The faces grouped by the tets their corners lie in (one tet for most faces; a face across tets
+// has up to 12 nodes): each group's nodes in increasing order, and a slot for each three of them.
+struct FaceGroups {
   struct Group {
     std::array<int, 12> nodes;
     int count = 0;
-    size_t first = 0;  // its first triple in triples_
+    size_t first = 0;  // its first triple in `triples`
   };
-  struct KeyHash {
-    size_t operator()(const std::array<int, 3>& k) const {
-      const auto u = [](int x) { return static_cast<unsigned long long>(static_cast<unsigned>(x)); };
-      return std::hash<unsigned long long>()((u(k[0]) * 1000003ULL + u(k[1])) * 1000003ULL + u(k[2]));
-    }
-  };
-
-  // The group of the tets of `corners`, made the first time: a face in one tet finds it by the
-  // tet, one across tets by the sorted tets.
-  const Group& group_of(const Embedding& e, const std::array<int, 3>& corners) {
-    std::array<int, 3> tets{e.vertex_tet(corners[0]), e.vertex_tet(corners[1]), e.vertex_tet(corners[2])};
-    const bool one_tet = tets[0] == tets[1] && tets[1] == tets[2];
-    if (one_tet && static_cast<size_t>(tets[0]) >= by_tet_.size()) by_tet_.resize(static_cast<size_t>(tets[0]) + 1, -1);
-    std::sort(tets.begin(), tets.end());
-    if (one_tet && by_tet_[static_cast<size_t>(tets[0])] >= 0) return groups_[static_cast<size_t>(by_tet_[static_cast<size_t>(tets[0])])];
-    if (!one_tet) {
-      const auto found = index_.find(tets);
-      if (found != index_.end()) return groups_[found->second];
-    }
-    Group g;
-    for (int corner : corners)
-      for (int k = 0; k < 4; ++k) g.nodes[static_cast<size_t>(g.count++)] = e.vertex_nodes(corner, k);
-    std::sort(g.nodes.begin(), g.nodes.begin() + g.count);
-    g.count = static_cast<int>(std::unique(g.nodes.begin(), g.nodes.begin() + g.count) - g.nodes.begin());
-    g.first = triples_.size();
-    for (int i = 0; i < g.count; ++i)
-      for (int j = i + 1; j < g.count; ++j)
-        for (int k = j + 1; k < g.count; ++k) triples_.push_back({{g.nodes[i], g.nodes[j], g.nodes[k]}, 0.0});
-    if (one_tet) by_tet_[static_cast<size_t>(tets[0])] = static_cast<int>(groups_.size());
-    else index_.emplace(tets, groups_.size());
-    groups_.push_back(g);
-    return groups_.back();
-  }
-
-  std::vector<int> by_tet_;  // the group of the faces in one tet, by tet (-1: none yet)
-  std::unordered_map<std::array<int, 3>, size_t, KeyHash> index_;
-  std::vector<Group> groups_;
-  std::vector<VolumeKeeping::Triple> triples_;
+  std::vector<Group> groups;
+  std::vector<int> of_face;                     // the group of each face
+  std::vector<VolumeKeeping::Triple> triples;  // every group's, coefficients zero
 };
 
-// Every triple of `triples` once (groups share them: the nodes of a tet's face are in the groups
-// of both tets and of the faces across them), its coefficients summed in the order given; in
-// increasing order of nodes; none with a coefficient of zero.
-std::vector<VolumeKeeping::Triple> merged(std::vector<VolumeKeeping::Triple> triples) {
-  std::stable_sort(triples.begin(), triples.end(),
-                   [](const VolumeKeeping::Triple& x, const VolumeKeeping::Triple& y) { return x.nodes < y.nodes; });
+struct TetsHash {
+  size_t operator()(const std::array<int, 3>& k) const {
+    const auto u = [](int x) { return static_cast<unsigned long long>(static_cast<unsigned>(x)); };
+    return std::hash<unsigned long long>()((u(k[0]) * 1000003ULL + u(k[1])) * 1000003ULL + u(k[2]));
+  }
+};
+
+FaceGroups group_faces(const Embedding& e, const Triangles& F) {
+  FaceGroups out;
+  out.of_face.resize(static_cast<size_t>(F.rows()));
+  std::vector<int> by_tet(static_cast<size_t>(e.vertex_tet.size() ? e.vertex_tet.maxCoeff() + 1 : 0), -1);
+  std::unordered_map<std::array<int, 3>, int, TetsHash> across;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    std::array<int, 3> tets{e.vertex_tet(F(f, 0)), e.vertex_tet(F(f, 1)), e.vertex_tet(F(f, 2))};
+    const bool one_tet = tets[0] == tets[1] && tets[1] == tets[2];
+    std::sort(tets.begin(), tets.end());
+    int& id = one_tet ? by_tet[static_cast<size_t>(tets[0])] : across.try_emplace(tets, -1).first->second;
+    if (id < 0) {
+      id = static_cast<int>(out.groups.size());
+      FaceGroups::Group g;
+      for (int k = 0; k < 3; ++k)
+        for (int n = 0; n < 4; ++n) g.nodes[static_cast<size_t>(g.count++)] = e.vertex_nodes(F(f, k), n);
+      std::sort(g.nodes.begin(), g.nodes.begin() + g.count);
+      g.count = static_cast<int>(std::unique(g.nodes.begin(), g.nodes.begin() + g.count) - g.nodes.begin());
+      g.first = out.triples.size();
+      for (int i = 0; i < g.count; ++i)
+        for (int j = i + 1; j < g.count; ++j)
+          for (int k = j + 1; k < g.count; ++k) out.triples.push_back({{g.nodes[i], g.nodes[j], g.nodes[k]}, 0.0});
+      out.groups.push_back(g);
+    }
+    out.of_face[static_cast<size_t>(f)] = id;
+  }
+  return out;
+}
+
+// Face f's minors added to its group's triples: the 3 by count matrix of its corners' weights on
+// the group's nodes, and its minor at every three columns.
+void add_minors(const Embedding& e, const Triangles& F, Eigen::Index f, const FaceGroups::Group& g,
+                VolumeKeeping::Triple* triples) {
+  Eigen::Matrix<double, 3, 12> w = Eigen::Matrix<double, 3, 12>::Zero();
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 4; ++k) {
+      const auto at = std::lower_bound(g.nodes.begin(), g.nodes.begin() + g.count, e.vertex_nodes(F(f, r), k)) - g.nodes.begin();
+      w(r, at) += e.vertex_bary(F(f, r), k);
+    }
+  for (int i = 0; i < g.count; ++i)
+    for (int j = i + 1; j < g.count; ++j)
+      for (int k = j + 1; k < g.count; ++k, ++triples) {
+        Eigen::Matrix3d minor;
+        minor << w.col(i), w.col(j), w.col(k);
+        triples->coefficient += minor.determinant();
+      }
+}
+
+// Every triple once (groups share them: the nodes of a tet's face are in the groups of both tets
+// and of the faces across them), its coefficients summed in group order; in increasing order of
+// nodes; none with a coefficient of zero. A counting sort by the first node, then each first
+// node's few triples sorted on the threads.
+std::vector<VolumeKeeping::Triple> merged(const std::vector<VolumeKeeping::Triple>& triples, Eigen::Index nodes) {
+  std::vector<int> begin(static_cast<size_t>(nodes) + 1, 0);
+  for (const VolumeKeeping::Triple& t : triples) ++begin[static_cast<size_t>(t.nodes[0]) + 1];
+  for (size_t i = 0; i + 1 < begin.size(); ++i) begin[i + 1] += begin[i];
+  std::vector<int> order(triples.size());
+  std::vector<int> fill(begin.begin(), begin.end() - 1);
+  for (size_t j = 0; j < triples.size(); ++j) order[static_cast<size_t>(fill[static_cast<size_t>(triples[j].nodes[0])]++)] = static_cast<int>(j);
+  parallel_for(static_cast<int>(nodes), [&](int i) {
+    std::sort(order.begin() + begin[static_cast<size_t>(i)], order.begin() + begin[static_cast<size_t>(i) + 1], [&](int x, int y) {
+      return std::tie(triples[static_cast<size_t>(x)].nodes, x) < std::tie(triples[static_cast<size_t>(y)].nodes, y);
+    });
+  });
   std::vector<VolumeKeeping::Triple> out;
-  for (const VolumeKeeping::Triple& t : triples) {
+  for (int j : order) {
+    const VolumeKeeping::Triple& t = triples[static_cast<size_t>(j)];
     if (!out.empty() && out.back().nodes == t.nodes) out.back().coefficient += t.coefficient;
     else out.push_back(t);
   }
@@ -131,19 +149,18 @@ VolumeKeeping::VolumeKeeping(const Embedding& e, const Triangles& F, Eigen::Inde
   // Each face's det[x_a, x_b, x_c], with x = W V (a corner's weights on its tet's nodes), is
   // multilinear in V: the sum over every three nodes i < j < k of the face's of the minor of W
   // at columns i, j, k times det[V_i, V_j, V_k] (a repeated node gives zero). Faces whose corners
-  // lie in the same tets share their nodes, so their minors are summed once: within blocks of
-  // faces of a fixed size on the threads, then block after block (the same bits on any number of
-  // threads).
-  constexpr Eigen::Index kBlock = 1 << 16;
-  std::vector<std::vector<Triple>> blocks(static_cast<size_t>((F.rows() + kBlock - 1) / kBlock));
-  parallel_for(static_cast<int>(blocks.size()), [&](int b) {
-    NodeTriples triples;
-    for (Eigen::Index f = b * kBlock; f < std::min(F.rows(), (b + 1) * kBlock); ++f) triples.add(e, F(f, 0), F(f, 1), F(f, 2));
-    blocks[static_cast<size_t>(b)] = triples.take();
+  // lie in the same tets share their nodes: each group's minors are summed over its faces in face
+  // order, the groups on the threads (the same bits on any thread count).
+  FaceGroups g = group_faces(e, F);
+  std::vector<int> group_begin, faces_by_group;
+  list_by_owner(static_cast<int>(g.groups.size()), static_cast<int>(F.rows()),
+                [&](int f) { return g.of_face[static_cast<size_t>(f)]; }, group_begin, faces_by_group);
+  parallel_for(static_cast<int>(g.groups.size()), [&](int k) {
+    const FaceGroups::Group& group = g.groups[static_cast<size_t>(k)];
+    for (int j = group_begin[static_cast<size_t>(k)]; j < group_begin[static_cast<size_t>(k) + 1]; ++j)
+      add_minors(e, F, faces_by_group[static_cast<size_t>(j)], group, &g.triples[group.first]);
   });
-  std::vector<Triple> all;
-  for (const std::vector<Triple>& block : blocks) all.insert(all.end(), block.begin(), block.end());
-  triples_ = merged(std::move(all));
+  triples_ = merged(g.triples, domain_vertices);
 }
 
 void VolumeKeeping::centred(const Points& V, RowPoints& out) const {
