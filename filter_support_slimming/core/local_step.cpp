@@ -24,12 +24,12 @@ TetPieces constraint_pieces(const Embedding& emb, Eigen::Index tets, const std::
       mine.emplace_back(f, emb.tet_face_areas(p));
     }
     if (mine.size() < 2) return;
-    // Normals closer than the minimal rotation's tolerance are one constraint (min_rotation.h): a
-    // piece joins the first such piece before it, which carries their area. Rotations keep the
-    // distances, so the merge made at rest holds in every iteration.
+    // Normals within kPieceMergeTolerance are one constraint: a piece joins the first such piece
+    // before it, which carries their area. Rotations keep the distances, so the merge made at
+    // rest holds in every iteration.
     Eigen::Matrix3Xd normals(3, static_cast<Eigen::Index>(mine.size()));
     for (size_t i = 0; i < mine.size(); ++i) normals.col(static_cast<Eigen::Index>(i)) = rest_normals.row(mine[i].first).transpose();
-    const std::vector<Eigen::Index> first = near_repeats(normals, kMinRotationFeasibilityTolerance);
+    const std::vector<Eigen::Index> first = near_repeats(normals, kPieceMergeTolerance);
     std::vector<size_t> place(mine.size());  // of a kept piece, in the merged list
     size_t kept = 0;
     for (size_t i = 0; i < mine.size(); ++i) {
