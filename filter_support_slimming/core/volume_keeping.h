@@ -30,14 +30,19 @@
 //   volume (about its centroid, a fixed combination of them too) is a fixed cubic form of the
 //   domain's positions, 1/6 sum of c_ijk det[V_i, V_j, V_k] over triples of the nodes of the
 //   tets the faces lie in. The set-up finds the c_ijk once (the constructor says how); each step
-//   then reads the domain's few thousand vertices and not the surface's faces.
+//   then reads the domain's vertices and not the surface's. Where a group of faces would need
+//   more than four triples a face (a coarse surface in a fine domain: one face's corners in three
+//   tets apart, 220 triples), those faces are summed face by face instead, their corners made
+//   from the domain on the spot.
 // Cost: the set-up groups the faces by the tets their corners lie in (one pass, a hash of the
 //   faces across tets), sums each group's minors over its faces on the threads, and merges the
 //   triples that groups share (a counting sort by node); each step is then one pass over the
 //   triples for the load and one for the cubic. The 1.1M-face bunny at the default resolution
-//   (23k tets): 55k groups, 841k triples merged into 102k; set-up 0.18 s, the global step 0.71 ->
-//   0.07 s over 18 steps (bench/slimming_stages). Sums run in face order within a group and in
-//   group order across groups: the same bits on any thread count.
+//   (23k tets): 55k groups, most by their triples (merged into about 100k), set-up 0.18 s, the
+//   global step 0.71 -> 0.09 s over 18 steps; the 3,674-face bunny in a 55k-vertex domain: every
+//   face by itself, as fast as before (bench/slimming_stages). Sums run in face order within a
+//   group, in group order across groups and in face order for the faces by themselves: the same
+//   bits on any thread count.
 // Why a pressure: ARAP's targets are rotations, which keep each tet's volume, but the blend of
 // incompatible rotations compresses: the overhangs bent up were carved into the part (the coherent
 // method lost 7.5% of the volume of the corpus's organic models). The pressure puts that volume
@@ -74,8 +79,16 @@ class VolumeKeeping {
   // Domain positions V less the embedded surface's centroid, by rows.
   void centred(const Points& V, RowPoints& out) const;
   Eigen::Index domain_vertices_;
+  // A face taken face by face: each corner's four nodes and weights.
+  struct Corners {
+    std::array<std::array<int, 4>, 3> nodes;
+    std::array<std::array<double, 4>, 3> weights;
+    Eigen::RowVector3d at(int corner, const RowPoints& V) const;  // the corner at positions V
+  };
   Eigen::VectorXd centroid_weights_;  // #DV: the surface's centroid is their sum of V
-  std::vector<Triple> triples_;       // the volume: 1/6 sum of c_ijk det[V_i, V_j, V_k]
+  // The volume: 1/6 (sum of c_ijk det[V_i, V_j, V_k] + sum over faces_ of det[x_a, x_b, x_c]).
+  std::vector<Triple> triples_;
+  std::vector<Corners> faces_;
   // Buffers kept from call to call: fresh ones cost a page fault every 4 kB, every step.
   RowPoints P_, Q_;
 };
