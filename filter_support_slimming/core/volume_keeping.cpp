@@ -111,12 +111,9 @@ void add_minors(const Embedding& e, const Triangles& F, Eigen::Index f, const Fa
 // nodes; none with a coefficient of zero. A counting sort by the first node, then each first
 // node's few triples sorted on the threads.
 std::vector<VolumeKeeping::Triple> merged(const std::vector<VolumeKeeping::Triple>& triples, Eigen::Index nodes) {
-  std::vector<int> begin(static_cast<size_t>(nodes) + 1, 0);
-  for (const VolumeKeeping::Triple& t : triples) ++begin[static_cast<size_t>(t.nodes[0]) + 1];
-  for (size_t i = 0; i + 1 < begin.size(); ++i) begin[i + 1] += begin[i];
-  std::vector<int> order(triples.size());
-  std::vector<int> fill(begin.begin(), begin.end() - 1);
-  for (size_t j = 0; j < triples.size(); ++j) order[static_cast<size_t>(fill[static_cast<size_t>(triples[j].nodes[0])]++)] = static_cast<int>(j);
+  std::vector<int> begin, order;
+  list_by_owner(static_cast<int>(nodes), static_cast<int>(triples.size()),
+                [&](int j) { return triples[static_cast<size_t>(j)].nodes[0]; }, begin, order);
   parallel_for(static_cast<int>(nodes), [&](int i) {
     std::sort(order.begin() + begin[static_cast<size_t>(i)], order.begin() + begin[static_cast<size_t>(i) + 1], [&](int x, int y) {
       return std::tie(triples[static_cast<size_t>(x)].nodes, x) < std::tie(triples[static_cast<size_t>(y)].nodes, y);
