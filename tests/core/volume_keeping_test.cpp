@@ -25,6 +25,16 @@ double embedded_volume(const Embedding& e, const Triangles& F, const Points& V) 
   return signed_volume(Surface{S, F});
 }
 
+// d volume(V) / d V(v, k) by central differences of step 1e-4.
+template <class Volume>
+double central_slope(const Volume& volume, const Points& V, Eigen::Index v, int k) {
+  const double h = 1e-4;
+  Points up = V, down = V;
+  up(v, k) += h;
+  down(v, k) -= h;
+  return (volume(up) - volume(down)) / (2 * h);
+}
+
 // The volume's gradient as one pass face by face would scatter it (the load's bits are held to
 // it): d Vol / d V at the domain vertices, from the embedded surface S.
 Points embedded_volume_gradient(const Embedding& e, const Triangles& F, const Points& S, Eigen::Index domain_vertices) {
@@ -132,25 +142,21 @@ TEST(VolumeKeeping, AnOpenSurfaceKeepsTheVolumeAboutItsCentroid) {
   volume.keep(target, u, moved);
   EXPECT_NEAR(embedded_volume(domain.embedding, open, moved), target, 1e-9 * std::abs(target));
   const Points load = volume.load(V);
-  const double h = 1e-4;
+  // The load holds the centroid still (the pressure's direction), so compare with the volume
+  // about a fixed point: the centroid of the surface at V.
+  Points S;
+  embedded_positions(domain.embedding, V, S);
+  const Eigen::RowVector3d centre = S.colwise().mean();
+  auto about_centre = [&](const Points& at) {
+    Points moved_surface;
+    embedded_positions(domain.embedding, at, moved_surface);
+    double vol = 0.0;
+    for (Eigen::Index f = 0; f < open.rows(); ++f)
+      vol += (moved_surface.row(open(f, 0)) - centre).dot((moved_surface.row(open(f, 1)) - centre).cross(moved_surface.row(open(f, 2)) - centre));
+    return vol / 6.0;
+  };
   for (Eigen::Index v : {Eigen::Index(0), V.rows() / 3, V.rows() / 2}) {
-    Points up = V, down = V;
-    up(v, 0) += h;
-    down(v, 0) -= h;
-    // The load holds the centroid still (the pressure's direction), so compare with the volume
-    // about a fixed point: the centroid of the surface at V.
-    Points S;
-    embedded_positions(domain.embedding, V, S);
-    const Eigen::RowVector3d centre = S.colwise().mean();
-    auto about_centre = [&](const Points& at) {
-      Points moved_surface;
-      embedded_positions(domain.embedding, at, moved_surface);
-      double vol = 0.0;
-      for (Eigen::Index f = 0; f < open.rows(); ++f)
-        vol += (moved_surface.row(open(f, 0)) - centre).dot((moved_surface.row(open(f, 1)) - centre).cross(moved_surface.row(open(f, 2)) - centre));
-      return vol / 6.0;
-    };
-    const double slope = (about_centre(up) - about_centre(down)) / (2 * h);
+    const double slope = central_slope(about_centre, V, v, 0);
     EXPECT_NEAR(load(v, 0), slope, 1e-6 * (1.0 + std::abs(slope))) << v;
   }
 }
@@ -165,11 +171,11 @@ TEST(VolumeKeeping, NoResponseLeavesThePositionsAlone) {
   EXPECT_TRUE(V == before);
 }
 
-// The faces within one tet are summed into its four triangles once; the faces across tets gather
-// each vertex's corners on the threads in face order, and the cubic adds its terms in order: on a
-// surface large enough for the threads (81,920 faces), the load is the face-by-face pass's to
-// rounding (and the volume's gradient, by central differences), the same bits on one thread and
-// on two, and so are lambda and the moved positions.
+// The set-up sums each group of faces' minors on the threads in face order, and the steps add the
+// triples and the faces taken by themselves in order: on a surface large enough for the threads
+// (81,920 faces), the load is the face-by-face pass's to rounding (and the volume's gradient, by
+// central differences), the same bits on one thread and on two, and so are lambda and the moved
+// positions.
 TEST(VolumeKeeping, ALargeSurfaceGivesTheOnePassLoadAndTheSameLambdaOnAnyThreadCount) {
   const Surface ball = test::icosphere(6);
   SlimmingOptions o;
@@ -196,13 +202,10 @@ TEST(VolumeKeeping, ALargeSurfaceGivesTheOnePassLoadAndTheSameLambdaOnAnyThreadC
   EXPECT_EQ(lambdas[0], lambdas[1]);
   EXPECT_TRUE(kept[0] == kept[1]);
   EXPECT_NEAR(embedded_volume(domain.embedding, ball.F, kept[0]), signed_volume(ball), 1e-9 * signed_volume(ball));
-  const double h = 1e-4;
+  auto volume_at = [&](const Points& at) { return embedded_volume(domain.embedding, ball.F, at); };
   for (Eigen::Index v : {Eigen::Index(0), V.rows() / 2, V.rows() - 1})
     for (int k = 0; k < 3; ++k) {
-      Points up = V, down = V;
-      up(v, k) += h;
-      down(v, k) -= h;
-      const double slope = (embedded_volume(domain.embedding, ball.F, up) - embedded_volume(domain.embedding, ball.F, down)) / (2 * h);
+      const double slope = central_slope(volume_at, V, v, k);
       EXPECT_NEAR(reference(v, k), slope, 1e-6 * (1.0 + std::abs(slope))) << v << " " << k;
     }
 }
