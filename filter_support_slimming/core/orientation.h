@@ -44,7 +44,9 @@
 //   4. the best pool is scored once more, exactly (the plate from every vertex, the plate rule
 //      face by face), and the top distinct ones (>= distinct_deg apart) kept;
 //   5. the support model estimates the support of the best support_model_candidates of them and of
-//      the pose as given, and the least support wins (ties within 1% to the better score).
+//      the pose as given, and the least support wins; among supports within 1% + 1 mm³ of the
+//      least, the pose resting the most area on the plate, then the pose as given, then the
+//      better score.
 //
 // Errors: std::invalid_argument with a readable reason for a mesh with no faces, bad indices,
 // non-finite coordinates, zero extent or zero area, faces that are not consistently oriented
@@ -75,8 +77,9 @@ struct OrientationOptions {
   int refine_starts = 8;            // best distinct candidates refined locally, >= 0
   int report_count = 10;            // candidates returned in OrientationResult::top, >= 1
   // The final choice: the support model (support_model.h, what the slicer builds) judges this many
-  // of the best distinct candidates by score, and the pose as given; the least support wins (the
-  // score decides between poses within 1% of it). 0: the score alone.
+  // of the best distinct candidates by score, and the pose as given; the least support wins
+  // (within 1% of it: the most contact with the plate, then the pose as given, then the score).
+  // 0: the score alone.
   int support_model_candidates = 8;
   double distinct_deg = 5.0;        // candidates closer than this count as one pose, [0, 180]
   int threads = 0;                  // OpenMP threads; 0: the runtime's default. Results do not

@@ -126,7 +126,8 @@ std::string choice_note(const IterateChoice& choice, const CoherenceOptions& c, 
   // Iterates the crease limit turned away did need less support: what follows is of the others.
   const std::string iterates = choice.passed_over() > 0 ? "iterates within the crease limit" : "iterates";
   if (by_model && choice.best_unsaved_pct() > 0.0) {
-    std::snprintf(note, sizeof note, "; the %s needed at most %.3g%% less support than the input (support model), under the "
+    std::snprintf(note, sizeof note, "; the %s needed at most %.3g%% less support than the input (support model, over the grid phases and at "
+                  "the slicer's own), under the "
                   "%.3g%% worth a change of shape, so the input is returned unchanged",
                   iterates.c_str(), choice.best_unsaved_pct(), c.min_support_saving_pct);
     return why + note;

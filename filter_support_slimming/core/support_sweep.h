@@ -29,7 +29,9 @@
 //   - cells within that depth below a dense contact are interface, the rest base; the
 //     base islands get a sheath along their outline (cell sides facing non-base cells, and the
 //     part's outline inside them) and fill lines along x on the cell boundaries inside them
-//     (PrusaSlicer anchors its support lines where the grid is, one cell apart); pixels where a
+//     (PrusaSlicer anchors its support lines where the grid is, one cell apart), joined at
+//     alternate ends into a zigzag by links that run along the island's outline, out along a row
+//     past a line's end to where the row ends and back (half a link per end); pixels where a
 //     column meets the part's top get a bottom interface;
 //   - the first layer: the columns' pixels grown by first_layer_expansion around, not through, the
 //     part, at its own density, with a sheath.

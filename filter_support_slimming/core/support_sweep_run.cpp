@@ -73,6 +73,37 @@ struct PhaseState {
   }
 };
 
+// The link from the end of the fill line above cell c (on the boundary with the row above) on
+// `side` (-1 or +1 along x) to the end of the line below c's row on the same side: the zigzag runs
+// along the island's outline, so where the row reaches past either line's end, the link runs out
+// along the row to its end, one cell side down, and back in to the other line's end. Where the line
+// above goes on further along the row (a notch), its end here links only to a line below that
+// ends in this cell and goes on too. In mm; 0 when nothing links.
+template <class IsBase>
+double zigzag_link(const PhaseState& st, const CellMap& map, const IsBase& base, int c, int side, int S, double p) {
+  const int row_begin = c - c % map.cx, row_end = row_begin + map.cx;
+  auto in_row = [&](int e) { return e >= row_begin && e < row_end; };
+  const int sides = side < 0 ? 0 : 1;
+  int out = 0, e = c;
+  bool lower_goes_on = false;
+  while (in_row(e + side) && base(e + side)) {
+    e += side;
+    ++out;
+    if (base(e + map.cx)) {  // the line above resumes: a notch
+      for (int d = c + side; in_row(d) && base(d); d += side) lower_goes_on |= base(d - map.cx);
+      const bool lower_ends_here = base(c - map.cx) && !base(c + side - map.cx);
+      return lower_ends_here && lower_goes_on ? (S - st.count[c].side_trimmed[sides]) * p : 0.0;
+    }
+  }
+  int back = 0, b = e;  // the outermost cell of the row under which the line below runs
+  while (in_row(b) && base(b) && !base(b - map.cx)) {
+    b -= side;
+    ++back;
+  }
+  if (!in_row(b) || !base(b)) return 0.0;
+  return ((S - st.count[e].side_trimmed[sides]) + static_cast<double>(out + back) * S) * p;
+}
+
 // One layer's columns in figures: the base and interface areas, the base islands' outline (cell
 // sides facing no base cell, and the part's outline inside base cells) where the sheath runs, and
 // the base fill. PrusaSlicer's support lines run along x one grid cell apart, on the cell
@@ -111,9 +142,9 @@ LayerFigures layer_figures(const PhaseState& st, const CellMap& map, const Pixel
     if (line_up) f.fill_length += std::min(S - k.side_trimmed[3], S - st.count[up].side_trimmed[2]) * p;
     for (int side : {-1, 1}) {
       const bool end_up = line_up && !(base(c + side) && base(up + side));
-      const bool end_down = line_down && !(base(c + side) && base(down + side));
-      if (end_up) f.fill_length -= fill_end;
-      if (end_up && end_down) f.fill_length += 0.5 * (S - k.side_trimmed[side < 0 ? 0 : 1]) * p;
+      if (!end_up) continue;
+      f.fill_length -= fill_end;
+      f.fill_length += 0.5 * zigzag_link(st, map, base, c, side, S, p);
     }
   }
   f.fill_length = std::max(0.0, f.fill_length);

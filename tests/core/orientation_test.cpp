@@ -387,8 +387,9 @@ TEST(Orientation, BadInputCatalogueIsOrientedOrRefused) {
 
 TEST(Orientation, SupportModelPicksTheLeastSupportOfTheBest) {
   // Step 5: of the best distinct candidates by score and the pose as given, the one the support
-  // model says needs the least support wins (a candidate within 1% + 1 mm³ of it only when its
-  // score is better), and each estimate is the model's own figure for that pose.
+  // model says needs the least support wins; among those within 1% + 1 mm³ of the least, the one
+  // resting the most area on the plate (then the pose as given); each estimate is the model's own
+  // figure for that pose.
   for (const NamedShape& shape : shapes()) {
     SCOPED_TRACE(shape.name);
     OrientationOptions o;
@@ -400,10 +401,28 @@ TEST(Orientation, SupportModelPicksTheLeastSupportOfTheBest) {
     m.print_direction = r.best.direction;
     ASSERT_GE(r.best.support_estimate, 0.0);  // judged (-1: unmeasurable); the T lying down needs none
     EXPECT_NEAR(r.best.support_estimate, estimate_support(shape.surface, m).volume_mm3, 1e-9 * r.best.support_estimate);
-    for (size_t k = 1; k < judged; ++k)
-      EXPECT_LE(r.best.support_estimate, r.top[k].support_estimate * 1.01 + 1.0) << k;
-    // The pose as given was judged too, and is kept when it needs clearly less.
-    ASSERT_GE(r.as_given.support_estimate, 0.0);
-    EXPECT_LE(r.best.support_estimate, r.as_given.support_estimate * 1.01 + 1.0);
+    ASSERT_GE(r.as_given.support_estimate, 0.0);  // the pose as given was judged too
+    std::vector<const OrientationCandidate*> rivals = {&r.as_given};
+    for (size_t k = 1; k <= judged && k < r.top.size(); ++k) rivals.push_back(&r.top[k]);
+    for (const OrientationCandidate* c : rivals) {
+      if (c->support_estimate < 0.0) continue;
+      EXPECT_LE(r.best.support_estimate, c->support_estimate * 1.01 + 1.0) << c->origin;
+      if (r.best.support_estimate <= c->support_estimate * 1.01 + 1.0 && c->support_estimate <= r.best.support_estimate * 1.01 + 1.0) {
+        EXPECT_GE(r.best.contact_area, c->contact_area * (1.0 - 1e-9)) << c->origin;  // a tie: the most contact
+      }
+    }
   }
+}
+
+TEST(Orientation, ATieInSupportGoesToThePoseRestingMoreOnThePlate) {
+  // A post standing on its end needs no support, and none lying down either: the support model
+  // cannot tell them apart, and lying down it rests four times the area on the plate. (A cube,
+  // alike on every face, stays as given: BoxStaysAsGivenAndATurnedBoxLandsOnItsLargestFace.)
+  const Surface post = test::box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, 10, 40));
+  const OrientationResult r = optimize_orientation(post, OrientationOptions{});
+  EXPECT_EQ(r.as_given.support_estimate, 0.0);
+  EXPECT_EQ(r.best.support_estimate, 0.0);
+  EXPECT_NEAR(r.best.contact_area, 400.0, 1e-9);
+  EXPECT_NEAR(r.as_given.contact_area, 100.0, 1e-9);
+  EXPECT_LT(std::abs(r.best.direction.z()), 1e-9);
 }

@@ -29,6 +29,27 @@ TEST(IterateChoice, ASavingUnderTheLeastIsNotWorthAChangeOfShape) {
   EXPECT_TRUE(choice.offer(by_model(90.0)));
 }
 
+TEST(IterateChoice, TheLeastSavingMustHoldAtTheSlicersOwnPhaseToo) {
+  // The phase mean decides between iterates, but a saving it finds only at grid phases the slicer
+  // does not lay for the part as placed is not worth a change of shape.
+  auto at = [](double mean, double slicer_phase) {
+    IterationStats s = by_model(mean);
+    s.support_slicer_phase = slicer_phase;
+    return s;
+  };
+  IterateChoice choice(at(100.0, 120.0), 0.0, 3.0);
+  EXPECT_FALSE(choice.offer(at(95.0, 119.0)));  // 5% over the phases, 0.8% at the slicer's
+  EXPECT_NEAR(choice.best_unsaved_pct(), 100.0 / 120.0, 1e-12);
+  EXPECT_FALSE(choice.offer(at(98.0, 100.0)));  // 2% and 17%: the mean falls short
+  EXPECT_NEAR(choice.best_unsaved_pct(), 2.0, 1e-12);
+  EXPECT_TRUE(choice.offer(at(96.0, 116.0)));   // 4% and 3.3%: both hold
+  EXPECT_FALSE(choice.offer(at(90.0, 117.0)));  // more saved over the phases, too little at the slicer's
+  EXPECT_TRUE(choice.offer(at(94.0, 110.0)));
+  // Without the least, any saving over the phases counts, whatever the slicer's phase says.
+  IterateChoice any(at(100.0, 120.0), 0.0, 0.0);
+  EXPECT_TRUE(any.offer(at(99.0, 125.0)));
+}
+
 TEST(IterateChoice, WithoutTheLeastAnySavingCounts) {
   IterateChoice choice(by_model(100.0), 0.0, 0.0);
   EXPECT_TRUE(choice.offer(by_model(99.9)));

@@ -56,11 +56,14 @@ TEST(Slimming, PaperMethodAlsoHelpsAndCoherentHelpsMore) {
 namespace {
 double modelled_support(const Surface& s) { return estimate_support(s).volume_mm3; }
 
+// The optimizers compared, not the choice of what to return: the least saving is off (the T's
+// slimming saves 1-2% at the slicer's own grid phase, and by default comes back unchanged).
 void expect_more_support_saved_than_by_the_paper(const Surface& mesh) {
   const double before = modelled_support(mesh);
   for (double budget : {2.0, 3.0, 5.0, 10.0}) {
     SCOPED_TRACE("budget " + std::to_string(budget) + "%");
     SlimmingOptions o;
+    o.coherence.min_support_saving_pct = 0.0;
     o.max_iterations = 200;
     o.max_deviation_pct = budget;
     o.method = SlimmingMethod::Paper;
@@ -87,7 +90,8 @@ TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheBunny) {
 TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheT) {
   expect_more_support_saved_than_by_the_paper(test::refined(test::t_shape(), 4));
 }
-// The mushroom's flat cap bends at its rim, which saves 2-3% of its modelled support: less than
+// The mushroom's flat cap bends at its rim, which saves 4% of its modelled support over the grid
+// phases but 0.3% at the slicer's own phase for the part as placed (PrusaSlicer: +0.2%): less than
 // the least saving worth a change of shape (3%), so the input comes back bit for bit and the
 // stop reason says why. With any saving allowed the same run returns the slimmed part.
 TEST(Slimming, ASavingWithinTheModelsErrorLeavesTheInputAsItWas) {
@@ -108,7 +112,7 @@ TEST(Slimming, ASavingWithinTheModelsErrorLeavesTheInputAsItWas) {
     const SlimmingResult any = slim_supports(mushroom, o);
     EXPECT_GT(any.iterations, 0);
     EXPECT_LT(any.support_after_mm3, kept.support_before_mm3);
-    EXPECT_GT(any.support_after_mm3, (1.0 - least / 100.0) * kept.support_before_mm3);
+    EXPECT_GT(any.support_slicer_phase_after_mm3, (1.0 - least / 100.0) * kept.support_slicer_phase_before_mm3);
     EXPECT_NEAR(any.support_after_mm3, modelled_support(any.surface), 1e-9 * any.support_before_mm3);
   }
 }
@@ -197,17 +201,20 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
       } else {
         ASSERT_GT(r.support_before_mm3, 0.0);
         EXPECT_NEAR(r.support_after_mm3, modelled_support(r.surface), 1e-9 * r.support_before_mm3);
+        // A result saves at least the least worth a change of shape, over the grid phases and at
+        // the slicer's own; the mushroom's rim and the T's arms save less at the slicer's phase
+        // (PrusaSlicer: +0.2% and +1.0%), and they come back unchanged; the others are slimmed.
+        const double least = o.coherence.min_support_saving_pct / 100.0;
+        const double phase_bar = (1.0 - least) * r.support_slicer_phase_before_mm3;
         for (const IterationStats& st : r.history)
-          if (st.risky_area <= r.before.risky_area) {
+          if (st.risky_area <= r.before.risky_area && st.support_slicer_phase <= phase_bar) {
             EXPECT_GE(st.support_estimate, r.support_after_mm3) << st.iteration;
           }
-        // A result saves at least the least worth a change of shape; the mushroom's rim saves
-        // less, and it comes back unchanged (below); the others are slimmed.
-        const double least = o.coherence.min_support_saving_pct / 100.0;
         if (r.iterations > 0) {
           EXPECT_LE(r.support_after_mm3, (1.0 - least) * r.support_before_mm3);
+          EXPECT_LE(r.support_slicer_phase_after_mm3, phase_bar);
         }
-        EXPECT_EQ(r.iterations == 0, std::string(name) == "mushroom") << r.stop_reason;
+        EXPECT_EQ(r.iterations == 0, std::string(name) == "mushroom" || std::string(name) == "T") << r.stop_reason;
       }
       EXPECT_EQ(r.history.back().inverted_tets, 0);
       EXPECT_GE(r.surface.V.col(2).minCoeff(), -1e-9);  // nothing below the plate

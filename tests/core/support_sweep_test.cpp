@@ -130,6 +130,48 @@ TEST(SupportSweep, EqualsTheBruteForceSweepAtEveryPhase) {
   }
 }
 
+// A flat overhang at z = 10 over a comb by hand (72 × 72 pixels of 0.5 mm, cells of 4 pixels):
+// rows with a gap two cells wide, and at phase 0 a full row one cell high between two of them (the
+// zigzag's lines above and below it end in the same cells and go on past the gap: inner links); a
+// short row under a full row under a gapped one (the line below ends where the gap begins and
+// links out to the row's end); and rows whose ends step in and out by whole cells (outer links
+// along the steps). Other phases mix the rows.
+SupportRaster comb_overhang() {
+  SupportRaster r;
+  r.grid.pixel = 0.5;
+  r.grid.nx = r.grid.ny = 72;
+  r.span_begin.assign(static_cast<size_t>(r.grid.count()) + 1, 0);
+  auto in_comb = [](int i, int j) {
+    const bool gap = i >= 24 && i < 32, wide = i >= 8 && i < 56;
+    if (j >= 8 && j < 16) return i >= 8 && i < 24;
+    if (j >= 16 && j < 20) return wide;  // one cell high at phase 0: between the two rows above
+    if (j >= 20 && j < 32) return wide && !gap;
+    if (j >= 32 && j < 36) return wide;  // one cell high at phase 0: gaps above and below
+    if (j >= 36 && j < 48) return wide && !gap;
+    if (j >= 48 && j < 56) return i >= 12 && i < 44;
+    if (j >= 56 && j < 64) return i >= 20 && i < 52;
+    return false;
+  };
+  for (int p = 0; p < r.grid.count(); ++p)
+    if (in_comb(p % 72, p / 72)) r.overhangs.push_back({p, 49, 49, false});
+  return r;
+}
+
+TEST(SupportSweep, TheZigzagsLinksAlongAStepsAndANotchAreTheBruteForceSweeps) {
+  const SupportRaster r = comb_overhang();
+  SlicerLayers layers;
+  layers.count = 60;
+  GridSweepSettings settings;
+  const GridSupportSweep sweep(r, layers, settings);
+  for (int ox = 0; ox < 4; ++ox)
+    for (int oy = 0; oy < 4; ++oy) {
+      const GridSweepResult got = sweep.run(ox, oy), want = test::reference_sweep(r, layers, settings, ox, oy);
+      ASSERT_GT(want.base_fill, 0.0);
+      EXPECT_NEAR(got.base_fill, want.base_fill, 1e-9 * want.base_fill) << "phase " << ox << "," << oy;
+      EXPECT_NEAR(got.total(), want.total(), 1e-9 * want.total()) << "phase " << ox << "," << oy;
+    }
+}
+
 // A raster by hand: 3 × 3 cells of 4 pixels (0.5 mm), an overhang over the centre pixel (5, 5) at
 // z = 10, and a block of the part from z = 4 to 6 over pixels [lo, hi]² (nothing else).
 SupportRaster column_over_a_block(int lo, int hi) {

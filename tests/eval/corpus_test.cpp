@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/orientation.h"
 #include "run_command.h"
 #include "support/shapes.h"
 #include "support/source_paths.h"
@@ -52,4 +53,16 @@ TEST(Corpus, EveryModelArrivesInItsPrintPoseWithItsFaces) {
     EXPECT_NEAR((hi - lo).maxCoeff(), 60.0, 1e-6);
     EXPECT_GT(signed_volume(s), 0.0);
   }
+  // The duck sits on its flat underside. On its side it casts less shadow, and the support model
+  // gives it 0.1% less support, a tie within the model's noise; PrusaSlicer gives 4.3% more. A tie
+  // goes to the pose resting more on the plate: Print Orientation leaves the duck as it is.
+  const OrientationResult duck = optimize_orientation(vcgx::load_surface((out / "duck.ply").string()));
+  EXPECT_EQ(duck.best.direction, Eigen::Vector3d::UnitZ());
+  bool tie = false;  // a turn the score prefers that the model cannot tell from the pose as given
+  for (size_t k = 1; k < duck.top.size(); ++k) {
+    const OrientationCandidate& c = duck.top[k];
+    tie |= c.support_estimate >= 0.0 && c.score < duck.as_given.score && c.contact_area < duck.as_given.contact_area &&
+           c.support_estimate <= duck.as_given.support_estimate * 1.01 + 1.0;
+  }
+  EXPECT_TRUE(tie);
 }

@@ -1,6 +1,7 @@
 #include "support/support_model_reference.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -178,6 +179,47 @@ struct LayerSums {
   double base = 0, iface = 0, outline = 0, fill = 0, contact = 0;
 };
 
+// Half of every zigzag link, row by row: in each run of base cells, the fill lines above the run
+// (cells whose row above is base too) and below it, as segments. The outermost segment ends on
+// either side link along the outline: out to the run's end, one cell side (less its trimmed
+// pixels), and back. An inner end of a line above links (one cell side) only to an inner end of a
+// line below in the same cell.
+template <class IsBase>
+double zigzag_links(const Phase& ph, const IsBase& is_base, const std::vector<std::array<int, 4>>& trims, double px) {
+  const int S = ph.S, cx = ph.cx;
+  double links = 0.0;
+  for (int row = 0; row * cx < ph.cells; ++row) {
+    for (int x0 = 0; x0 < cx;) {
+      if (!is_base(row * cx + x0)) {
+        ++x0;
+        continue;
+      }
+      int x1 = x0;
+      while (x1 + 1 < cx && is_base(row * cx + x1 + 1)) ++x1;
+      std::vector<int> upper, lower;  // columns of the run with a line above / below
+      for (int x = x0; x <= x1; ++x) {
+        if (is_base(row * cx + x + cx)) upper.push_back(x);
+        if (is_base(row * cx + x - cx)) lower.push_back(x);
+      }
+      if (!upper.empty() && !lower.empty()) {
+        // The outer ends: left (side 0) and right (side 1).
+        links += 0.5 * ((S - trims[row * cx + x0][0]) + (upper.front() - x0 + lower.front() - x0) * S) * px;
+        links += 0.5 * ((S - trims[row * cx + x1][1]) + (x1 - upper.back() + x1 - lower.back()) * S) * px;
+      }
+      // Inner ends: a segment of a line that is not the outermost ends where the next cell lacks it.
+      auto has = [](const std::vector<int>& xs, int x) { return std::binary_search(xs.begin(), xs.end(), x); };
+      for (int x : upper) {
+        if (x != upper.back() && !has(upper, x + 1) && has(lower, x) && !has(lower, x + 1) && x < lower.back())
+          links += 0.5 * (S - trims[row * cx + x][1]) * px;
+        if (x != upper.front() && !has(upper, x - 1) && has(lower, x) && !has(lower, x - 1) && x > lower.front())
+          links += 0.5 * (S - trims[row * cx + x][0]) * px;
+      }
+      x0 = x1 + 1;
+    }
+  }
+  return links;
+}
+
 // Layer j's columns by their definition: areas, the base islands' sheath and fill lines.
 LayerSums layer_sums(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, const SweepRates& rate, const Phase& ph,
                      const std::vector<char>& now, const std::vector<double>& weight, int j) {
@@ -185,6 +227,7 @@ LayerSums layer_sums(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, 
   const double px = g.pixel, p2 = px * px;
   auto is_base = [&](int c) { return c >= 0 && c < ph.cells && now[c] && weight[c] < 0.5; };
   LayerSums sum;
+  std::vector<std::array<int, 4>> trims(static_cast<size_t>(ph.cells), {0, 0, 0, 0});
   for (int c = 0; c < ph.cells; ++c) {
     if (!now[c]) continue;
     int trimmed = 0, edges = 0, side_trimmed[4] = {0, 0, 0, 0};
@@ -221,13 +264,11 @@ LayerSums layer_sums(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, 
       for (int p : ph.members[c + cx]) up_trimmed += (p / g.nx + S - ph.oy) % S == 0 && v.at(v.trim, p, j);
       sum.fill += std::min(S - side_trimmed[3], S - up_trimmed) * px;
     }
-    for (int side : {-1, 1}) {
-      const bool end_up = up && !(is_base(c + side) && is_base(c + cx + side));
-      const bool end_down = down && !(is_base(c + side) && is_base(c - cx + side));
-      if (end_up) sum.fill -= rate.fill_end;
-      if (end_up && end_down) sum.fill += 0.5 * (S - side_trimmed[side < 0 ? 0 : 1]) * px;
-    }
+    for (int side : {-1, 1})
+      if (up && !(is_base(c + side) && is_base(c + cx + side))) sum.fill -= rate.fill_end;
+    trims[c] = {side_trimmed[0], side_trimmed[1], side_trimmed[2], side_trimmed[3]};
   }
+  sum.fill += zigzag_links(ph, is_base, trims, px);
   return sum;
 }
 
