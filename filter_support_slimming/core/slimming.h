@@ -30,7 +30,8 @@
 // The result is the iterate that needs the least support (result_choice.h: by the support model,
 // or in the paper's method the shadow volume of overhang.h), then the least risky area, the later
 // one on ties, among the iterates with no more risky area than the input; the input itself when
-// no iterate beats it (by the model: by at least CoherenceOptions::min_support_saving_pct). So
+// no iterate beats it (by the model: by at least CoherenceOptions::min_support_saving_pct, over
+// the grid phases and at the slicer's own). So
 // neither the risky area nor the support estimate of the result exceeds the input's.
 #pragma once
 
@@ -105,7 +106,9 @@ struct CoherenceOptions {
   // at 2.4% creases, -15.7% at 3.1%; docs/slicer-frontier.md).
   double max_crease_share_pct = 2.5;
   // The least saving worth a change of shape: when no iterate needs at least this share (%) less
-  // support than the input by the support model, the input is returned unchanged; 0 = any saving.
+  // support than the input by the support model, both over its grid phases and at the slicer's
+  // own phase for the part as placed (result_choice.h), the input is returned unchanged; 0 = any
+  // saving.
   // A smaller predicted saving lies within the model's error against the slicer (2.6 points on
   // average over the corpus's organic models, at its grid phase), and the slicers found none
   // there: the T, Suzanne and OpenSCAD's example017, predicted 1.7-2.5%, got -0.5% to +2.7% from
