@@ -38,8 +38,9 @@ options:
                            changed by more than 10 deg) exceed PCT % of the edge length;
                            0: no limit; the paper's method has none                  [2.5]
   --min-saving PCT         return the input unchanged unless the support model finds a result
-                           needing at least PCT % less support; 0: any saving; the paper's
-                           method chooses by the shadow volume and has none            [3]
+                           needing at least PCT % less support, over its grid phases and at
+                           the slicer's own; 0: any saving; the paper's method chooses by
+                           the shadow volume and has none                              [3]
   --features FILE          rigid features: a text file of face ids (0-based)
   --features-from-mesh     rigid features: the faces selected in IN (PLY face flags)
   --orient                 first turn the part into the print pose that needs the least support
