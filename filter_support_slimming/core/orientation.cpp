@@ -81,8 +81,8 @@ void choose_best(const OrientationGeometry& g, const OrientationOptions& o, cons
 // model cannot break; there the pose that rests more of the part on the plate wins (what the
 // score's contact bonus is for, and what the model does not see), then the pose as given, then the
 // better score. The shadow volume, the proxy the model replaces, decides nothing there: on its side
-// the corpus's duck casts less shadow and needs 0.1% less by the model, but 4.3% more by PrusaSlicer
-// and rests on a fraction of its flat underside.
+// the corpus's duck casts less shadow and needs 0.1% less by the model, but 4.3% more by PrusaSlicer,
+// and touches the plate at a point instead of resting on its flat underside.
 void judge_by_support(const Surface& oriented, const OrientationOptions& o, OrientationResult& result) {
   const size_t judged = std::min(result.top.size(), static_cast<size_t>(std::max(0, o.support_model_candidates)));
   if (judged == 0) return;

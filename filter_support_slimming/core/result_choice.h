@@ -20,8 +20,9 @@
 // 20 mm: -4.1% by the mean, -0.3% at its phase, +0.2% by PrusaSlicer).
 // In: the input's statistics (iteration 0), the crease limit and the least saving (%), then each
 // iterate's (risky_area mm², support_estimate or shadow_volume mm³, support_slicer_phase mm³,
-// crease_share_pct, which only the iterates reads_creases() names need). Out: offer() is true when the iterate is the best so
-// far; best_unsaved_pct() the largest saving (%) that fell short of the least, for the report.
+// crease_share_pct, which only the iterates reads_creases() names need). Out: offer() is true
+// when the iterate is the best so far; best_unsaved_pct() the largest saving (%) that fell short
+// of the least, for the report.
 #pragma once
 
 #include <algorithm>

@@ -134,11 +134,10 @@ LayerFigures layer_figures(const PhaseState& st, const CellMap& map, const Pixel
       for (int s = 0; s < 4; ++s)
         if (!base(c + neighbour[s])) f.outline += (S - k.side_trimmed[s]) * p;
     }
-    // The line on the boundary with the cell above, and the link between it and the line below
-    // where both end in this cell (the fill joins consecutive lines along the island's edge,
-    // alternately at either end: half a link per such end).
-    const int up = c + map.cx, down = c - map.cx;
-    const bool line_up = base(up), line_down = base(down);
+    // The line on the boundary with the cell above, and at each of its ends half the link to the
+    // line below (zigzag_link: the fill joins consecutive lines at alternate ends).
+    const int up = c + map.cx;
+    const bool line_up = base(up);
     if (line_up) f.fill_length += std::min(S - k.side_trimmed[3], S - st.count[up].side_trimmed[2]) * p;
     for (int side : {-1, 1}) {
       const bool end_up = line_up && !(base(c + side) && base(up + side));

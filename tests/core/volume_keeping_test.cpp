@@ -65,11 +65,12 @@ std::vector<Eigen::Matrix3d> random_turns(int n, double degrees, unsigned seed) 
   return L;
 }
 
-// A ball resting on z = 0, embedded in its voxel domain at `resolution` cells.
+// A ball (an icosphere of `levels` subdivisions) resting on z = 0, embedded in its voxel domain at
+// `resolution` cells.
 struct BallInDomain {
-  Surface ball = test::icosphere(3);
+  Surface ball;
   EmbeddedDomain domain;
-  explicit BallInDomain(int resolution) {
+  explicit BallInDomain(int resolution, int levels = 3) : ball(test::icosphere(levels)) {
     SlimmingOptions o;
     o.resolution = resolution;
     domain = embedded_domain(CheckedSurface(ball), Eigen::Vector3d::UnitZ(), o, [](double, const std::string&) {});
@@ -115,11 +116,9 @@ TEST(VolumeKeeping, LambdaOnTheCubicIsTheRootBisectionFinds) {
 // its own volume as signed_volume() measures the embedded surface, its load is that volume's
 // gradient, and the domain sums faces within one tet and faces across tets alike.
 TEST(VolumeKeeping, AnOpenSurfaceKeepsTheVolumeAboutItsCentroid) {
-  const Surface ball = test::icosphere(5);
-  SlimmingOptions o;
-  o.resolution = 8;
-  const EmbeddedDomain domain =
-      embedded_domain(CheckedSurface(ball), Eigen::Vector3d::UnitZ(), o, [](double, const std::string&) {});
+  const BallInDomain in_domain(8, 5);
+  const Surface& ball = in_domain.ball;
+  const EmbeddedDomain& domain = in_domain.domain;
   std::vector<int> kept_faces;
   for (Eigen::Index f = 0; f < ball.F.rows(); ++f)
     if (ball.V(ball.F(f, 0), 2) < 0.7 * ball.V.col(2).maxCoeff()) kept_faces.push_back(static_cast<int>(f));
@@ -177,11 +176,9 @@ TEST(VolumeKeeping, NoResponseLeavesThePositionsAlone) {
 // central differences), the same bits on one thread and on two, and so are lambda and the moved
 // positions.
 TEST(VolumeKeeping, ALargeSurfaceGivesTheOnePassLoadAndTheSameLambdaOnAnyThreadCount) {
-  const Surface ball = test::icosphere(6);
-  SlimmingOptions o;
-  o.resolution = 10;
-  const EmbeddedDomain domain =
-      embedded_domain(CheckedSurface(ball), Eigen::Vector3d::UnitZ(), o, [](double, const std::string&) {});
+  const BallInDomain in_domain(10, 6);
+  const Surface& ball = in_domain.ball;
+  const EmbeddedDomain& domain = in_domain.domain;
   const Points V = domain.mesh.V + 0.3 * Points::Random(domain.mesh.V.rows(), 3);
   Points S;
   embedded_positions(domain.embedding, V, S);

@@ -256,9 +256,9 @@ LayerSums layer_sums(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, 
       for (int k = 0; k < 4; ++k)
         if (!is_base(nbc[k])) sum.outline += (S - side_trimmed[k]) * px;
     }
-    // A fill line on the boundary with the base cell above (its free pixels on both sides), and
-    // half a link where it and the line below both end here.
-    const bool up = is_base(c + cx), down = is_base(c - cx);
+    // A fill line on the boundary with the base cell above (its free pixels on both sides), short
+    // of fill_end at each end; its links are counted row by row (zigzag_links).
+    const bool up = is_base(c + cx);
     if (up) {
       int up_trimmed = 0;
       for (int p : ph.members[c + cx]) up_trimmed += (p / g.nx + S - ph.oy) % S == 0 && v.at(v.trim, p, j);
