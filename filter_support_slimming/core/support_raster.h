@@ -18,27 +18,11 @@
 //             With rule.slices: where the slices at the slicer's slice heights (first_layer / 2,
 //             then first_layer + (k - 1/2) layer) wind around the centre, each run of layers
 //             k0..k1 as [slice(k0) - layer / 4, slice(k1) + layer / 4].
-//   overhangs for every pixel that an overhanging feature touches (its closed square overlaps the
-//             feature's projection: conservative, so the slicer's stretching of any contact to
-//             a whole grid cell is exact), the object layers the feature shows in there (layer
-//             k >= 1: its part between the slices of layers k - 1 and k; the voxel rasterizer of
-//             triangle_cells.h over pixels × layers) and whether it wants a dense interface.
-//             Features:
-//               - a face less steep than rule.max_slope_deg (dense when less steep than
-//                 rule.dense_slope_deg), unless its connected region of such faces reaches less
-//                 than half a layer's reach (layer_height / tan(slope)) beyond the layer below
-//                 (a lip or a fold); the faces on a region's edge also marked shifted by that
-//                 reach along their level direction (the slicer grows each overhang back into the
-//                 layer by it);
-//               - a bottom crease: an edge whose two faces both rise away from it, convex, less
-//                 steep than max_slope_deg, whose tip in the slice moves out of the layer below
-//                 grown by layer_height / tan(max slope) with square corners (the first slices
-//                 of a keel are thin islands with nothing below them); dense past the dense reach;
-//               - a lowest vertex: below all its neighbours, on at least 3 faces; dense;
-//               - with rule.slices, a slice above one that lost contours (dropped open chains):
-//                 its pixels that the lost contours, closed by a straight line, would have
-//                 filled in the slice below; dense, at that layer.
-//             A pixel may carry several overhangs (one per feature touching it).
+//   overhangs the features the slicer supports, per pixel they touch, with the object layers they
+//             show in there and whether they want a dense interface: overhanging faces, bottom
+//             creases and lowest points (overhang_features.h), and with rule.slices the slices
+//             above lost contours (slice_raster.h). Sorted by pixel, then layers; a pixel may
+//             carry several overhangs (one per feature touching it).
 // Cost: O(#F + #pixels touched); with rule.slices also O(segments + pixels × layers). Deterministic:
 // the same on any thread count.
 #pragma once

@@ -49,6 +49,26 @@ bool covers(const std::vector<Range>& ranges, int k) {
   return false;
 }
 
+// Whether the part fills pixel p at the slice of layer k (a span of the raster holds its height).
+bool fills(const SupportRaster& raster, int p, double slice_z) {
+  for (int s = raster.span_begin[p]; s < raster.span_begin[p + 1]; ++s)
+    if (raster.spans[s].bottom <= slice_z && slice_z <= raster.spans[s].top) return true;
+  return false;
+}
+
+// Whether pixel p lies inside the part at layer k: filled, and so are its four neighbours (beyond
+// the raster is free). The slicer rasterises a contact with any coverage and masks a pixel only
+// inside the part eroded by one pixel, so a contact on the part's outline still reaches its cell.
+bool inside_part(const SupportRaster& raster, const SlicerLayers& layers, int p, int k) {
+  const PixelGrid& g = raster.grid;
+  const int i = p % g.nx, j = p / g.nx;
+  if (i == 0 || j == 0 || i + 1 == g.nx || j + 1 == g.ny) return false;
+  const double z = layers.slice_z(k);
+  for (int q : {p, p - 1, p + 1, p - g.nx, p + g.nx})
+    if (!fills(raster, q, z)) return false;
+  return true;
+}
+
 }  // namespace
 
 int SlicerLayers::first_slice_at_or_above(double z) const {
@@ -151,7 +171,8 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
     for (; mark < raster.overhangs.size() && raster.overhangs[mark].pixel == p; ++mark) {
       const PixelOverhang& o = raster.overhangs[mark];
       const int k_low = o.layer_low;
-      if (k_low >= count || (k_low > 0 && covers(solid, k_low - 1))) continue;  // hidden inside the part
+      if (k_low >= count) continue;
+      if (k_low > 0 && covers(solid, k_low - 1) && inside_part(raster, L, p, k_low - 1)) continue;  // hidden
       const int high = contact_layer(std::min(count - 1, o.layer_high));
       if (high < 0) continue;
       const int low = std::max(0, contact_layer(k_low));

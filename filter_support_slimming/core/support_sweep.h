@@ -14,7 +14,9 @@
 // The rules, per support layer j from the top down (support layers coincide with the object's):
 //   - an overhang at object layer k puts a contact in its pixel's cell at the highest support
 //     layer whose top lies contact_distance below layer k's bottom (none below the first layer);
-//     a feature over a pixel that the part fills just below it is hidden and ignored;
+//     a feature over a pixel inside the part just below it (the pixel and its four neighbours
+//     filled) is hidden and ignored, but one on the part's outline there counts: the slicer
+//     rasterises its contacts with any coverage, so a sliver of one reaches the cell;
 //   - a cell is a column at j when it has a contact at j, or was one at j + 1 and the projection
 //     passes: some pixel of it is free of the part in object layers j and j + 1, or lies on the
 //     part's outline there (a neighbour free). The slicer fills its grid cells up to the part eroded

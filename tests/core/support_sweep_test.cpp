@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <set>
+#include <vector>
 
 #include "core/support_raster.h"
 #include "core/support_sweep.h"
@@ -214,5 +215,47 @@ TEST(SupportSweep, AColumnGoesOnPastThePartsSideAndStopsInsideIt) {
   }
 }
 
+
+// A raster by hand: 4 × 4 cells of 4 pixels (0.5 mm), the part filling pixel columns i < 8 from
+// the plate to z = 5, and overhangs standing on its top (layer 25, whose slice below lies at 4.9)
+// over the given pixels.
+SupportRaster overhangs_on_a_top(const std::vector<int>& pixels) {
+  SupportRaster r;
+  r.grid.pixel = 0.5;
+  r.grid.nx = r.grid.ny = 16;
+  r.span_begin.push_back(0);
+  for (int p = 0; p < r.grid.count(); ++p) {
+    if (p % 16 < 8) r.spans.push_back({0.0, 5.0});
+    r.span_begin.push_back(static_cast<int>(r.spans.size()));
+  }
+  for (int p : pixels) r.overhangs.push_back({p, 25, 25, false});
+  return r;
+}
+
+TEST(SupportSweep, AContactOnThePartsOutlineReachesItsCellAndOneInsideThePartIsHidden) {
+  // Cells from pixel 2 on (phase 2, 0): pixels 6..9 make a cell that the part's side crosses.
+  // An overhang over pixel (7, 2), on the outline (pixel 8 beside it is free), is a contact there:
+  // the slicer rasterises a contact with any coverage, so the sliver reaches the cell, whose free
+  // pixels 8 and 9 become a column. One over pixel (6, 10), inside the part (its four neighbours
+  // filled too), is hidden: nothing, though its cell has the same free pixels.
+  SlicerLayers layers;
+  layers.count = 40;
+  const GridSweepSettings settings;
+  const int outline = 7 + 16 * 2, inside = 6 + 16 * 10;
+  const GridSweepResult on_outline = GridSupportSweep(overhangs_on_a_top({outline}), layers, settings).run(2, 0);
+  EXPECT_GT(on_outline.contact_area, 0.0);
+  EXPECT_GT(on_outline.first_layer, 0.0);  // the column stands on the plate beside the part
+  const GridSweepResult hidden = GridSupportSweep(overhangs_on_a_top({inside}), layers, settings).run(2, 0);
+  EXPECT_EQ(hidden.total(), 0.0);
+  EXPECT_EQ(hidden.contact_area, 0.0);
+  const GridSweepResult both = GridSupportSweep(overhangs_on_a_top({outline, inside}), layers, settings).run(2, 0);
+  EXPECT_DOUBLE_EQ(both.total(), on_outline.total());
+  for (const std::vector<int>& pixels : {std::vector<int>{outline}, std::vector<int>{inside}, std::vector<int>{outline, inside}}) {
+    const SupportRaster r = overhangs_on_a_top(pixels);
+    const GridSweepResult got = GridSupportSweep(r, layers, settings).run(2, 0), want = test::reference_sweep(r, layers, settings, 2, 0);
+    EXPECT_NEAR(got.total(), want.total(), 1e-9 * (1.0 + want.total()));
+    EXPECT_NEAR(got.contact_area, want.contact_area, 1e-9 * (1.0 + want.contact_area));
+  }
+}
 }  // namespace
 }  // namespace slim

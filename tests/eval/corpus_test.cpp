@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "core/orientation.h"
+#include "core/support_model.h"
+#include "key_values.h"
 #include "run_command.h"
 #include "support/shapes.h"
 #include "support/source_paths.h"
@@ -18,10 +20,20 @@
 using namespace slim;
 namespace fs = std::filesystem;
 
+namespace {
+
+// The corpus, built once in the build tree (scripts/corpus.sh only checks it on a second run).
+fs::path corpus_dir() { return fs::path(SLIM_EVAL_OUT_DIR) / "corpus"; }
+test::CommandRun build_corpus() {
+  return test::run_command(test::shell_quote(test::source_dir() + "/scripts/corpus.sh") + " --build " +
+                           test::shell_quote(SLIM_BINARY_DIR) + " --out " + test::shell_quote(corpus_dir().string()));
+}
+
+}  // namespace
+
 TEST(Corpus, EveryModelArrivesInItsPrintPoseWithItsFaces) {
-  const fs::path out = fs::path(SLIM_EVAL_OUT_DIR) / "corpus";  // kept: a second run only checks
-  const test::CommandRun run = test::run_command(test::shell_quote(test::source_dir() + "/scripts/corpus.sh") + " --build " +
-                                                 test::shell_quote(SLIM_BINARY_DIR) + " --out " + test::shell_quote(out.string()));
+  const fs::path out = corpus_dir();
+  const test::CommandRun run = build_corpus();
   ASSERT_EQ(run.exit_code, 0) << run.output;
   // docs/corpus.md's table: name -> faces.
   const std::map<std::string, long> expected = {
@@ -65,4 +77,42 @@ TEST(Corpus, EveryModelArrivesInItsPrintPoseWithItsFaces) {
            c.support_estimate <= duck.as_given.support_estimate * 1.01 + 1.0;
   }
   EXPECT_TRUE(tie);
+}
+
+TEST(Corpus, TheSupportModelPredictsPrusaSlicersChangeOnTheHinge) {
+  // The yardstick (the model's predicted change within 5 points of PrusaSlicer's) on the
+  // corpus model it missed by 9: slimmed at the defaults, the hinge's bore ceiling turns from a
+  // round one into one whose 45-degree facets are steeper. Its new lowest overhanging facet ends
+  // 0.01 mm short of a grid row, and PrusaSlicer still supports that row: each layer's overhang
+  // runs from the outline of the slice below, which lies on the steeper facet past the row's
+  // edge, and a sliver of a contact reaches its cell. The model, with both rules, predicts -5%
+  // where PrusaSlicer gives -5% (the mean of its quarter turns 0 and 90, the model's own
+  // protocol); without them it said -14%.
+  ASSERT_EQ(build_corpus().exit_code, 0);
+  const fs::path dir = test::scratch_dir(SLIM_EVAL_OUT_DIR, "hinge_change"), input = corpus_dir() / "netgen_hinge.ply";
+  const fs::path result = dir / "result.ply";
+  const test::CommandRun slim = test::run_command(test::shell_quote(SLIM_BINARY_DIR "/cli/support-slim") + " " +
+                                                  test::shell_quote(input.string()) + " -o " + test::shell_quote(result.string()) +
+                                                  " --dir 0,0,1 --angle 45 --plate-tolerance 0.071 --quiet");
+  ASSERT_EQ(slim.exit_code, 0) << slim.output;
+  SupportModelOptions judged;  // at the slicer's own grid phase, turns 0 and 90
+  judged.grid_phases = 1;
+  judged.turns = 2;
+  double prusa[2], model[2];
+  for (int k = 0; k < 2; ++k) {
+    const Surface part = vcgx::load_surface((k == 0 ? input : result).string());
+    const fs::path stl = dir / (k == 0 ? "input.stl" : "result.stl");
+    vcgx::save_surface(stl.string(), part);
+    const test::CommandRun sliced = test::run_command(
+        test::shell_quote(test::source_dir() + "/tools/slice_support.sh") + " " + test::shell_quote(stl.string()) +
+        " --slicer prusa --angle 45 --turns 0,90 --build " + test::shell_quote(SLIM_BINARY_DIR) + " --out " +
+        test::shell_quote((dir / (k == 0 ? "sliced_input" : "sliced_result")).string()));
+    ASSERT_EQ(sliced.exit_code, 0) << sliced.output;
+    prusa[k] = test::parse_key_values(sliced.output).at("support_mm3");
+    model[k] = estimate_support(part, judged).volume_mm3;
+  }
+  const double prusa_change = 100.0 * (prusa[1] / prusa[0] - 1.0), model_change = 100.0 * (model[1] / model[0] - 1.0);
+  EXPECT_LT(prusa_change, -1.0);  // the slimming saves some support, as PrusaSlicer counts it
+  EXPECT_NEAR(model_change, prusa_change, 5.0) << "PrusaSlicer " << prusa[0] << " -> " << prusa[1] << " mm3, the model "
+                                              << model[0] << " -> " << model[1];
 }

@@ -265,6 +265,10 @@ Surface mushroom(int segments) {
   return revolve({{0, 0}, {3, 0}, {3, 10}, {10, 11}, {10, 13}, {6, 15.5}, {0, 16}}, segments);
 }
 
+Surface prism_xz(const std::vector<Eigen::Vector2d>& profile, double y0, double y1) {
+  return extrude_xz(profile, ear_clip(profile), y0, y1);
+}
+
 Surface arch(int arc_segments) {
   std::vector<Eigen::Vector2d> profile{{-15, 0}, {-10, 0}};
   for (int i = 0; i <= arc_segments; ++i) {  // the opening's arc, from the left leg over to the right

@@ -74,6 +74,9 @@ namespace slim::test {
 // cap of radius 10 whose underside (z from 10 at the stem to 11 at the rim) overhangs.
 Surface mushroom(int segments = 48);
 
+// A simple polygon in the XZ plane (counter-clockwise in (x, z)) extruded along Y from y0 to y1.
+Surface prism_xz(const std::vector<Eigen::Vector2d>& profile, double y0, double y1);
+
 // An arch: an extruded inverted U, 30 wide, 20 high, 10 deep, standing on two legs, with a
 // semicircular opening of radius 10 (its upper half is the overhang).
 Surface arch(int arc_segments = 24);

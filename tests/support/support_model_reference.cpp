@@ -105,7 +105,13 @@ Voxels voxels(const SupportRaster& r, const SlicerLayers& L, const GridSweepSett
   };
   for (const PixelOverhang& o : r.overhangs) {
     const int lo = o.layer_low, hi = std::min(L.count - 1, o.layer_high);
-    if (lo >= L.count || (lo > 0 && v.at(v.solid, o.pixel, lo - 1))) continue;
+    if (lo >= L.count) continue;
+    const int i = o.pixel % nx, row = o.pixel / nx;
+    const bool edge = i == 0 || row == 0 || i + 1 == nx || row + 1 == ny;  // beyond the raster is free
+    if (lo > 0 && !edge && v.at(v.solid, o.pixel, lo - 1) && v.at(v.solid, o.pixel - 1, lo - 1) &&
+        v.at(v.solid, o.pixel + 1, lo - 1) && v.at(v.solid, o.pixel - nx, lo - 1) && v.at(v.solid, o.pixel + nx, lo - 1))
+      continue;  // inside the part: hidden
+
     for (int j = std::max(0, contact_layer(lo)); j <= contact_layer(hi); ++j) {
       v.at(v.contact, o.pixel, j) = 1;
       if (o.dense) v.at(v.dense, o.pixel, j) = 1;

@@ -1,0 +1,61 @@
+// The features the support model hands its sweep as contacts (core/overhang_features.h): the rules
+// checked against the layer-by-layer geometry worked out by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include "core/face_adjacency.h"
+#include "core/overhang_features.h"
+#include "support/shapes.h"
+
+namespace slim {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// A tunnel 10 mm wide through a block (along y, 10 mm long), standing on the plate: walls up to
+// z = 6, then a 50-degree face (steeper than the 46-degree threshold) up to the edge at x = -e,
+// z = z_edge, then a 35-degree face (an overhang) to the apex on x = 0; mirrored at x > 0.
+Surface tunnel(double z_edge) {
+  const double e = 5.0 - (z_edge - 6.0) / std::tan(50.0 * kDeg), apex = z_edge + e * std::tan(35.0 * kDeg);
+  return test::prism_xz({{-10, 0}, {-5, 0}, {-5, 6}, {-e, z_edge}, {0, apex}, {e, z_edge}, {5, 6}, {5, 0}, {10, 0}, {10, 16}, {-10, 16}},
+                        -5.0, 5.0);
+}
+
+// The layers marked over the pixels of column i (any row), by overhang_features() on the tunnel
+// with 0.25 mm pixels whose column 20 begins 0.05 mm left of the edge (x = -e - 0.05).
+std::set<int> layers_in_column(double z_edge, int i) {
+  const Surface s = tunnel(z_edge);
+  const double e = 5.0 - (z_edge - 6.0) / std::tan(50.0 * kDeg);
+  PixelGrid g;
+  g.pixel = 0.25;
+  g.x0 = -e - 0.05 - 20 * g.pixel;
+  g.y0 = -6.0;
+  g.nx = g.ny = 96;
+  std::set<int> layers;
+  for (const PixelOverhang& o : overhang_features(s, FaceAdjacency(s), g, OverhangRule{}))
+    if (o.pixel % g.nx == i)
+      for (int k = o.layer_low; k <= o.layer_high; ++k) layers.insert(k);
+  return layers;
+}
+
+TEST(OverhangFeatures, AnOverhangsEdgeReachesOverTheSteeperFaceBelowInItsOwnLayer) {
+  // Layers of 0.2 mm: layer k spans the slices at 0.2 + (k - 1.5) 0.2 and 0.2 + (k - 0.5) 0.2 mm.
+  // With the edge at z = 8.6, between the slices 8.5 and 8.7 of layer 43, the slicer's overhang in
+  // layer 43 starts at the outline of the slice at 8.5, on the 50-degree face 0.1 / tan 50 =
+  // 0.084 mm beyond the edge: past column 20's left side by 0.034 mm. Column 19 carries layer 43
+  // and nothing else (the steeper face is no overhang in its other layers); column 18, beyond that
+  // strip, nothing.
+  EXPECT_EQ(layers_in_column(8.6, 19), std::set<int>{43});
+  EXPECT_TRUE(layers_in_column(8.6, 18).empty());
+  EXPECT_FALSE(layers_in_column(8.6, 20).empty());  // the overhanging face's own pixels
+  // The edge at z = 8.52, just above the slice at 8.5: the strip is 0.02 / tan 50 = 0.017 mm wide
+  // and stays in column 20.
+  EXPECT_TRUE(layers_in_column(8.52, 19).empty());
+  EXPECT_FALSE(layers_in_column(8.52, 20).empty());
+}
+
+}  // namespace
+}  // namespace slim
