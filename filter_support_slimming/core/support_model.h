@@ -21,9 +21,11 @@
 //     layer_height / tan(threshold + 1°) (the slicer's threshold is inclusive): faces less steep
 //     than that (unless their connected region is a lip or fold too narrow to reach half as far),
 //     bottom creases whose tip moves out of the grown layer below (a keel's ridge, whatever its
-//     faces), and lowest points (a vertex below all its neighbours). Each marks the grid cells it
-//     touches at the layer of its contact, contact_distance below it; nothing under the first
-//     layer (support_raster.h).
+//     faces), and lowest points (a vertex below all its neighbours); each grown back by that
+//     reach into its layer's own strip (along the outline, and over the steeper face below an
+//     overhang's edge). Each marks the grid cells it touches, even by a sliver on the part's
+//     outline, at the layer of its contact, contact_distance below it; nothing under the first
+//     layer (overhang_features.h).
 //   - The grid: square cells of grid_spacing (the support lines' spacing) centred on the part's
 //     bounding box. A cell any overhang touches becomes a support column: the whole cell, minus the
 //     part and an xy_gap around it. The column goes down while some of the cell stays free of the
@@ -63,9 +65,9 @@
 // Determinism: the phases run in parallel (OpenMP), each in a fixed order, and are summed in
 // phase order: the result does not depend on the thread count.
 //
-// Cost (bench/support_model_bench.cpp; docs/speed.md): 5.5 ms for the 3,674-face bunny at 60 mm
-// on one thread (4 phases, 294 layers × 672 cells), 0.22 s for 940,544 faces (0.17 s on two);
-// 1 MB and 32 MB of memory. Linear in the faces (the raster; for an open mesh also the slices and
+// Cost (bench/support_model_bench.cpp; docs/speed.md): 5.7 ms for the 3,674-face bunny at 60 mm
+// on one thread (4 phases, 294 layers × 672 cells), 0.19 s for 940,544 faces (0.15 s on two);
+// 1 MB and 54 MB of memory. Linear in the faces (the raster; for an open mesh also the slices and
 // pixels × layers) plus cells × layers × phases (the sweep).
 //
 // Errors: std::invalid_argument with a readable reason for a surface with no faces, bad indices,
