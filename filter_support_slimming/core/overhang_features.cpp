@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "core/convex_polygon.h"
 #include "core/face_adjacency.h"
 #include "core/parallel_for.h"
 #include "core/triangle_cells.h"
@@ -230,21 +231,22 @@ void mark_tips(const Surface& s, const FaceAdjacency& adj, const LayerVoxels& vo
   }
 }
 
-// Triangle a, b, c clipped to the half-spaces n·p <= d: a convex polygon, empty when less than a
-// triangle is left (Sutherland-Hodgman).
-std::vector<Vec3> clip_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const std::vector<std::pair<Vec3, double>>& planes) {
-  std::vector<Vec3> poly{a, b, c}, next;
+// Triangle a, b, c clipped to the half-spaces n·p <= d (convex_polygon.h): at most 6 corners,
+// fewer than 3 when nothing is left.
+using Clipped = ConvexPolygon<6>;
+Clipped clip_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const std::array<std::pair<Vec3, double>, 3>& planes) {
+  Clipped poly, next;
+  poly.p[0] = a, poly.p[1] = b, poly.p[2] = c, poly.n = 3;
   for (const auto& [n, d] : planes) {
-    next.clear();
-    for (size_t i = 0; i < poly.size(); ++i) {
-      const Vec3& p = poly[i];
-      const Vec3& q = poly[(i + 1) % poly.size()];
-      const double sp = n.dot(p) - d, sq = n.dot(q) - d;
-      if (sp <= 0) next.push_back(p);
-      if ((sp < 0 && sq > 0) || (sp > 0 && sq < 0)) next.push_back(p + (sp / (sp - sq)) * (q - p));
+    double dist[6];
+    bool inside[6];
+    for (int i = 0; i < poly.n; ++i) {
+      dist[i] = n.dot(poly.p[static_cast<size_t>(i)]) - d;
+      inside[i] = dist[i] <= 0;
     }
-    poly.swap(next);
-    if (poly.size() < 3) return {};
+    clip_convex_polygon(poly, dist, inside, next);
+    poly = next;
+    if (poly.n < 3) break;
   }
   return poly;
 }
@@ -264,10 +266,10 @@ void mark_strip_below(const Surface& s, int g, const Vec3& a, const Vec3& b, dou
   // Inside the slices by a hair: the voxel cells are closed, and a strip ending on a slice would
   // touch the layer beyond it too.
   const double z_low = voxels.slice_below(std::min(a.z(), b.z())) + 1e-6, z_high = voxels.slice_above(std::max(a.z(), b.z())) - 1e-6;
-  const std::vector<std::pair<Vec3, double>> planes{
-      {Vec3(0, 0, -1), -z_low}, {Vec3(0, 0, 1), z_high}, {Vec3(away.x(), away.y(), 0), away.dot(a.head<2>()) + reach}};
-  const std::vector<Vec3> strip = clip_triangle(p, q, r, planes);
-  for (size_t i = 1; i + 1 < strip.size(); ++i) mark_feature(voxels, strip[0], strip[i], strip[i + 1], dense, out);
+  const Clipped strip = clip_triangle(p, q, r, {{{Vec3(0, 0, -1), -z_low}, {Vec3(0, 0, 1), z_high},
+                                                  {Vec3(away.x(), away.y(), 0), away.dot(a.head<2>()) + reach}}});
+  for (int i = 1; i + 1 < strip.n; ++i)
+    mark_feature(voxels, strip.p[0], strip.p[static_cast<size_t>(i)], strip.p[static_cast<size_t>(i + 1)], dense, out);
 }
 
 // The overhanging faces [first, end) (kind: overhanging_faces()) marked, and those on a region's

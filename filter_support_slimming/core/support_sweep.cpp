@@ -172,7 +172,7 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
       const PixelOverhang& o = raster.overhangs[mark];
       const int k_low = o.layer_low;
       if (k_low >= count) continue;
-      if (k_low > 0 && covers(solid, k_low - 1) && inside_part(raster, L, p, k_low - 1)) continue;  // hidden
+      if (k_low > 0 && inside_part(raster, L, p, k_low - 1)) continue;  // hidden
       const int high = contact_layer(std::min(count - 1, o.layer_high));
       if (high < 0) continue;
       const int low = std::max(0, contact_layer(k_low));
