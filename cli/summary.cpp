@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/resolution_ladder.h"
+
 namespace slim::cli {
 
 namespace {
@@ -139,6 +141,7 @@ void print_summary(const RunReport& run) {
   std::printf("  AE              %.2f%%   inverted tets %d\n", 100 * chosen.approximation_error, chosen.inverted_tets);
   std::printf("  domain          %d vertices, %d tets; solver %s\n", r.domain_vertices, r.domain_tets,
               r.solver_backend.empty() ? "none (no iteration ran)" : r.solver_backend.c_str());
+  std::printf("  resolution      %s\n", wrapped(ladder_line(r), 18).c_str());
   if (r.inside_out)
     std::printf("  note            the input is inside out (every normal points inwards): it was computed turned\n"
                 "                  over, and %s keeps the input's face orientation\n", run.out.c_str());

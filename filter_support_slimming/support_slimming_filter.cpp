@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/oriented_slimming.h"
+#include "core/resolution_ladder.h"
 #include "core/slimming_figures.h"
 
 namespace slim::plugin {
@@ -24,7 +25,9 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
   add_print_parameters(m, par);
   par.addParam(RichInt("resolution", defaults.resolution, "Voxel resolution",
                        "Number of voxel cells along the longest side of the bounding box. The tetrahedral "
-                       "domain is made from these cells; finer follows smaller features but runs slower."));
+                       "domain is made from these cells; finer follows smaller features but runs slower. The "
+                       "coherent method also slims at 4/3 and 2 times it (parts up to 300,000 faces) and keeps the "
+                       "result that needs the least support (estimated; the log gives each)."));
   par.addParam(RichEnum("domain", 0, QStringList() << "Voxel" << "TetGen", "Domain",
                         "Voxel: tetrahedra from a voxel grid aligned with the print direction (works on open and "
                         "non-manifold meshes). TetGen: a constrained tetrahedralization of the surface; needs a "
@@ -83,6 +86,7 @@ void log_slimming(FilterRun& run, const slim::SlimmingResult& r, const slim::Sli
   run.info(QString::asprintf("Support Slimming: %d iterations in %.2f s (%s); domain %d vertices, %d tets; solver %s",
                              r.iterations, r.seconds, r.stop_reason.c_str(), r.domain_vertices, r.domain_tets,
                              r.solver_backend.empty() ? "none (no iteration ran)" : r.solver_backend.c_str()));
+  run.info(QString("Support Slimming: voxel resolution ") + QString::fromStdString(slim::ladder_line(r)));
   run.info(QString::asprintf(
       "Support Slimming: displacement max %.4g, mean %.4g mm%s; volume %.6g -> %.6g mm^3 (%+.2f%%); "
       "AE %.2f%%; inverted tets %d",

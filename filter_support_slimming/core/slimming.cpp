@@ -11,6 +11,7 @@
 #include "core/embedded_domain.h"
 #include "core/parallel_for.h"
 #include "core/shape_metrics.h"
+#include "core/resolution_ladder.h"
 #include "core/result_choice.h"
 #include "core/slimmer.h"
 #include "core/support_model.h"
@@ -41,6 +42,9 @@ void validate_coherence(const CoherenceOptions& c) {
     throw std::invalid_argument("the crease share limit must be in [0, 100] % (0: no limit)");
   if (!(c.min_support_saving_pct >= 0.0 && c.min_support_saving_pct < 100.0))
     throw std::invalid_argument("the least support saving must be in [0, 100) % (0: any saving)");
+  for (double multiple : c.resolution_ladder)
+    if (!(multiple > 1.0 && multiple <= 4.0)) throw std::invalid_argument("the resolution ladder's multiples must be in (1, 4]");
+  if (c.resolution_ladder_max_faces < 0) throw std::invalid_argument("the resolution ladder's face cap must be 0 or more");
 }
 
 void validate_options(const Surface& input, const SlimmingOptions& o) {
@@ -249,6 +253,52 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
   return finish(why);
 }
 
+// slim_oriented at every rung of the resolution ladder; the run the support model prefers.
+SlimmingResult slim_on_ladder(const CheckedSurface& checked, const SlimmingOptions& o) {
+  const std::vector<int> rungs = ladder_resolutions(o, static_cast<long>(checked.get().F.rows()));
+  const double n = static_cast<double>(rungs.size());
+  SlimmingResult kept;
+  std::vector<ResolutionRun> runs;
+  SlimmingStageSeconds total;
+  double seconds = 0.0;
+  for (size_t i = 0; i < rungs.size(); ++i) {
+    SlimmingOptions at = o;
+    at.resolution = rungs[i];
+    if (o.progress && rungs.size() > 1)
+      at.progress = [&o, i, n, rung = rungs[i]](double f, const std::string& message) {
+        return o.progress((static_cast<double>(i) + f) / n, "resolution " + std::to_string(rung) + ": " + message);
+      };
+    SlimmingResult r;
+    try {
+      r = slim_oriented(checked, at);
+    } catch (const std::exception& refused) {
+      // The first rung is the user's resolution: its refusal or failure is the run's. A finer
+      // rung can only be refused for its size (the input and options passed the first), or fail
+      // numerically; the rungs that ran still stand, so it is left out and said so.
+      if (i == 0 || dynamic_cast<const Cancelled*>(&refused)) throw;
+      runs.push_back({rungs[i], 0.0, 0, refused.what()});
+      continue;
+    }
+    runs.push_back({rungs[i], r.support_after_mm3, r.iterations, ""});
+    seconds += r.seconds;
+    const SlimmingStageSeconds& t = r.stage_seconds;
+    total.domain += t.domain, total.embedding += t.embedding, total.factorization += t.factorization;
+    total.local += t.local, total.global += t.global, total.measure += t.measure;
+    total.support_model += t.support_model, total.creases += t.creases;
+    // Nothing to slim (no risky faces) is the same at every resolution.
+    const bool nothing_to_do = r.before.risky_count == 0;
+    if (i == 0 || prefer(r, kept)) {
+      kept = std::move(r);
+      kept.resolution = o.domain == DomainKind::Voxel ? rungs[i] : 0;
+    }
+    if (nothing_to_do) break;
+  }
+  kept.resolution_runs = std::move(runs);
+  kept.stage_seconds = total;
+  kept.seconds = seconds;
+  return kept;
+}
+
 }  // namespace
 
 SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
@@ -263,9 +313,9 @@ SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
   require_consistent_orientation(edges);
   SlimmingResult r;
   if (!inside_out(input, edges)) {
-    r = slim_oriented(checked, o);
+    r = slim_on_ladder(checked, o);
   } else {
-    r = slim_oriented(checked.derived(flipped(input)), o);
+    r = slim_on_ladder(checked.derived(flipped(input)), o);
     r.surface.F = input.F;  // the topology never changes, orientation included
     r.inside_out = true;
   }

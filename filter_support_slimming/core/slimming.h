@@ -6,7 +6,9 @@
 //
 // slim_supports is the driver: it checks the input once, builds the domain (embedded_domain.h)
 // and a SupportSlimmer (slimmer.h: the precomputation; step() is one iteration), runs the
-// iterations under the stopping rule below and keeps the best iterate (result_choice.h).
+// iterations under the stopping rule below and keeps the best iterate (result_choice.h); it does
+// so at each voxel resolution of the ladder and keeps the run whose result the support model
+// prefers (resolution_ladder.h).
 //
 // Each iteration:
 //   local step   for every tet t:  M_t = polar(V_t^cur (V_t^0)^-1)  (nearest rotation, det +1).
@@ -115,6 +117,12 @@ struct CoherenceOptions {
   // PrusaSlicer and up to +3.7% from Cura (docs/slicer-frontier.md). Read only when the support
   // model chooses.
   double min_support_saving_pct = 3.0;
+  // Slim again at these multiples of the voxel resolution and return the result the support model
+  // says needs the least support (resolution_ladder.h): 24, 32 and 48 cells by default. Read only
+  // when the support model chooses, on the voxel domain, for inputs of at most
+  // resolution_ladder_max_faces faces; empty = off (one run at the resolution).
+  std::vector<double> resolution_ladder = {4.0 / 3.0, 2.0};  // each in (1, 4]
+  long resolution_ladder_max_faces = 300000;
 
   static CoherenceOptions none() {
     CoherenceOptions o;
@@ -124,6 +132,7 @@ struct CoherenceOptions {
     o.max_step_deg = 10.0;
     o.margin_deg = 1.0;
     o.max_crease_share_pct = o.min_support_saving_pct = 0.0;
+    o.resolution_ladder.clear();
     return o;
   }
 };
@@ -221,7 +230,7 @@ struct IterationStats {
   int risky_tets = 0;
 };
 
-struct SlimmingStageSeconds {  // wall time per stage, summed over iterations
+struct SlimmingStageSeconds {  // wall time per stage, summed over iterations and rungs
   double domain = 0.0;          // voxel or TetGen domain
   double embedding = 0.0;       // barycentric coordinates and clipped face pieces
   double factorization = 0.0;   // the global step's assembly and its one factorization
@@ -231,6 +240,15 @@ struct SlimmingStageSeconds {  // wall time per stage, summed over iterations
   double support_model = 0.0;   // the support model's estimate of every iterate (choose_by_support_model)
   double creases = 0.0;         // the crease share of the iterates that may be chosen (max_crease_share_pct)
                                 // and the result's shape change (SlimmingResult::shape)
+};
+
+// One rung of the resolution ladder (resolution_ladder.h): a run at one voxel resolution.
+struct ResolutionRun {
+  int resolution = 0;                 // voxel cells along the longest side
+  double support_after_mm3 = 0.0;     // the support model's estimate of its result (phase mean)
+  int iterations = 0;                 // the iteration its result came from (0: the input)
+  std::string refused;                // why it did not run or failed (a finer rung over the memory
+                                      // budget, say), else empty
 };
 
 struct SlimmingResult {
@@ -260,9 +278,11 @@ struct SlimmingResult {
   // with the run's own crease meter.
   ShapeChange shape;
   double deviation_budget_mm = 0.0;   // the budget the run held to (0: none)
-  int domain_vertices = 0, domain_tets = 0;
+  int domain_vertices = 0, domain_tets = 0;  // the returned run's
+  int resolution = 0;                 // the returned run's voxel resolution (0: the TetGen domain)
+  std::vector<ResolutionRun> resolution_runs;  // every rung slimmed at, in order (one without a ladder)
   std::string solver_backend;
-  double seconds = 0.0;               // wall time of the whole run
+  double seconds = 0.0;               // wall time of the whole run, every rung
   using StageSeconds = SlimmingStageSeconds;
   StageSeconds stage_seconds;
 };

@@ -37,6 +37,7 @@ SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& r,
   f.budget_pct = percent(f.budget_mm, reference_diagonal);
   f.open_edges = r.open_edges;
   f.iterations = r.iterations;
+  f.resolution = r.resolution;
   f.seconds = r.seconds;
   return f;
 }
@@ -74,6 +75,7 @@ std::vector<std::pair<const char*, double>> named_figures(const SlimmingFigures&
           {"budget_pct", f.budget_pct},
           {"open_edges", static_cast<double>(f.open_edges)},
           {"iterations", static_cast<double>(f.iterations)},
+          {"resolution", static_cast<double>(f.resolution)},
           {"seconds", f.seconds}};
 }
 

@@ -38,6 +38,7 @@ struct SlimmingFigures {
   double budget_mm = 0.0, budget_pct = 0.0;  // 0: no budget
   long open_edges = 0;  // edges of the input used by one face: the borders of its holes
   int iterations = 0;
+  int resolution = 0;   // the voxel resolution the result came from (0: TetGen; resolution_ladder.h)
   double seconds = 0.0;
 };
 

@@ -49,9 +49,11 @@ TEST(CliReport, FiguresAreThoseOfTheFilesWritten) {
   for (const char* key : {"support_estimate_before_mm3", "support_estimate_after_mm3", "support_slicer_phase_before_mm3",
                           "support_slicer_phase_after_mm3", "support_slicer_phase_change_pct", "volume_change_pct",
                           "crease_share_pct", "crease_p99_deg", "hausdorff_pct", "hausdorff_mm", "max_displacement_mm",
-                          "budget_mm", "budget_pct", "risky_area_before_mm2", "risky_area_after_mm2", "iterations"})
+                          "budget_mm", "budget_pct", "risky_area_before_mm2", "risky_area_after_mm2", "iterations", "resolution"})
     EXPECT_EQ(f.count(key), 1u) << key << "\n" << text;
   EXPECT_NE(text.find("\"stop_reason\": \""), std::string::npos) << text;
+  // The voxel resolution the result came from: one of the ladder's rungs (24, 32, 48 by default).
+  EXPECT_TRUE(f.at("resolution") == 24 || f.at("resolution") == 32 || f.at("resolution") == 48) << f.at("resolution");
 
   const Surface in = test::sample_bunny(), slimmed = vcgx::load_surface(out.string());
   const double diag = test::bbox_diagonal(in);
@@ -128,6 +130,43 @@ TEST(CliReport, TheCreaseLimitHoldsInTheFileWritten) {
   }
   EXPECT_LE(share[1], 0.05 + 0.02);
   EXPECT_GT(share[0], 0.05 + 0.02) << "the default run no longer tests the limit";
+  fs::remove_all(dir);
+}
+
+// The resolution ladder (resolution_ladder.h) in the summary and the report: by default the
+// bunny is slimmed at 24, 32 and 48 cells and the summary gives each rung's estimate, the report
+// the rung kept; --one-resolution slims at --resolution alone, and that run is the ladder's own
+// first rung (the same estimate, to the digits printed).
+TEST(CliReport, TheResolutionLadderIsSaidAndOneResolutionTurnsItOff) {
+  const fs::path dir = test::scratch();
+  const std::string bunny = "'" + test::sample_bunny_path() + "' -o '" + (dir / "out.ply").string() + "' --report '";
+  const test::CliRun ladder = test::run_cli(bunny + (dir / "ladder.json").string() + "'");
+  ASSERT_EQ(ladder.exit_code, 0) << ladder.err;
+  const std::smatch rungs = [&] {
+    std::smatch m;
+    // The summary folds long lines: any space may be a line break and an indent.
+    const std::regex line(
+        R"(  resolution\s+(\d+)\s+cells\s+along\s+the\s+longest\s+side;\s+the\s+least\s+support\s+of\s+24\s+\(([0-9.]+)\s+mm\^3\),)"
+        R"(\s+32\s+\(([0-9.]+)\s+mm\^3\),\s+48\s+\(([0-9.]+)\s+mm\^3\))");
+    EXPECT_TRUE(std::regex_search(ladder.out, m, line)) << ladder.out;
+    return m;
+  }();
+  ASSERT_EQ(rungs.size(), 5u);
+  std::string text;
+  const std::map<std::string, double> f = read_numbers(dir / "ladder.json", text);
+  EXPECT_EQ(f.at("resolution"), std::stod(rungs[1]));
+  // The rung kept has the least estimate of the three, and it is the result's.
+  const double least = std::min({std::stod(rungs[2]), std::stod(rungs[3]), std::stod(rungs[4])});
+  EXPECT_NEAR(f.at("support_estimate_after_mm3"), least, 1e-5 * least);
+  EXPECT_NEAR(std::stod(rungs[2 + (f.at("resolution") == 32) + 2 * (f.at("resolution") == 48)]), least, 1e-12 * least);
+
+  const test::CliRun one = test::run_cli(bunny + (dir / "one.json").string() + "' --one-resolution");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_NE(one.out.find("  resolution      24 cells along the longest side\n"), std::string::npos) << one.out;
+  const std::map<std::string, double> g = read_numbers(dir / "one.json", text);
+  EXPECT_EQ(g.at("resolution"), 24);
+  EXPECT_NEAR(g.at("support_estimate_after_mm3"), std::stod(rungs[2]), 1e-5 * g.at("support_estimate_after_mm3"));
+  EXPECT_LE(f.at("support_estimate_after_mm3"), g.at("support_estimate_after_mm3"));
   fs::remove_all(dir);
 }
 
