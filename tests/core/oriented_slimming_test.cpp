@@ -18,6 +18,9 @@ TEST(OrientedSlimming, TheBudgetIsAShareOfThePartAsGiven) {
   for (double pct : {2.0, 5.0}) {
     SlimmingOptions o;
     o.max_deviation_pct = pct;
+    // One voxel resolution: the property holds run by run, and the ladder returns one rung's run
+    // bit for bit (resolution_ladder_test.cpp), so its other rungs would only repeat it.
+    o.coherence.resolution_ladder.clear();
     const OrientedSlimming job = slim_in_best_pose(bunny, o, with_effort(OrientationEffort::Fast));
     const double budget = pct / 100.0 * diag(bunny.V);
     // The pose changes the bounding box: a budget read from it would be another length.
@@ -40,7 +43,9 @@ TEST(OrientedSlimming, TheBudgetIsAShareOfThePartAsGiven) {
 // shorter tolerance, came out with a third of the saving).
 TEST(OrientedSlimming, ThePlateIsTheSameLengthWithAndWithoutTheSearch) {
   const Surface bunny = test::load_mesh(test::sample_bunny_path());
-  const SlimmingOptions o;
+  SlimmingOptions o;
+  // The plate is read before any run: one voxel resolution is enough.
+  o.coherence.resolution_ladder.clear();
   const OrientedSlimming job = slim_in_best_pose(bunny, o, with_effort(OrientationEffort::Fast));
   const double tolerance = 1e-3 * diag(bunny.V);
   EXPECT_DOUBLE_EQ(job.orientation.plate_tolerance, tolerance);

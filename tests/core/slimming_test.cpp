@@ -136,8 +136,12 @@ TEST(Slimming, TheCoherentMethodAimsPastTheSlicersThreshold) {
   o.coherence.margin_deg = 0.0;
   EXPECT_EQ(margin_of(o), 0.0);
 
-  const SlimmingResult aimed_past = slim_supports(bunny(), SlimmingOptions{});
-  o = SlimmingOptions{};
+  // One voxel resolution: the property holds run by run, and the ladder returns one rung's run
+  // bit for bit (resolution_ladder_test.cpp), so its other rungs would only repeat it.
+  SlimmingOptions one;
+  one.coherence.resolution_ladder.clear();
+  const SlimmingResult aimed_past = slim_supports(bunny(), one);
+  o = one;
   o.margin_deg = 1.0;
   const SlimmingResult at_threshold = slim_supports(bunny(), o);
   o.margin_deg = -1.0;
@@ -267,6 +271,9 @@ TEST(Slimming, DeviationBudgetHoldsAtEveryLevel) {
   for (double budget : {1.0, 2.0, 3.0}) {
     SlimmingOptions o;
     o.max_deviation_pct = budget;
+    // One voxel resolution: the property holds run by run, and the ladder returns one rung's run
+    // bit for bit (resolution_ladder_test.cpp), so its other rungs would only repeat it.
+    o.coherence.resolution_ladder.clear();
     const SlimmingResult r = slim_supports(bunny(), o);
     EXPECT_LE(r.displacement.maxCoeff(), budget / 100.0 * diag(bunny()) * (1 + 1e-9)) << budget;
     EXPECT_LE(r.after.risky_area, r.before.risky_area);
@@ -280,6 +287,9 @@ TEST(Slimming, SameResultWithOneAndTwoThreads) {
     SlimmingOptions o;
     o.max_iterations = iterations;
     o.max_deviation_pct = budget;
+    // One voxel resolution: the property holds run by run, and the ladder returns one rung's run
+    // bit for bit (resolution_ladder_test.cpp), so its other rungs would only repeat it.
+    o.coherence.resolution_ladder.clear();
     o.threads = 1;
     const SlimmingResult one = slim_supports(mesh, o);
     o.threads = 2;
@@ -316,6 +326,9 @@ TEST(Slimming, RigidFeatureKeepsItsShapeWhileTheRestBends) {
   SlimmingOptions o;
   o.max_deviation_pct = 5.0;
   o.rigid_features = feature;
+  // One voxel resolution: the property holds run by run, and the ladder returns one rung's run
+  // bit for bit (resolution_ladder_test.cpp), so its other rungs would only repeat it.
+  o.coherence.resolution_ladder.clear();
   const SlimmingResult r = slim_supports(s, o);
   ASSERT_GT(r.iterations, 0);
   double worst = 0.0;
