@@ -10,6 +10,7 @@
 
 #include "core/convex_polygon.h"
 #include "core/face_adjacency.h"
+#include "core/region_extent.h"
 #include "core/parallel_for.h"
 #include "core/triangle_cells.h"
 #include "core/union_find.h"
@@ -27,15 +28,16 @@ using Vec3 = Eigen::Vector3d;
 // own thickness only shifts features below its slice, which get no support anyway).
 struct LayerVoxels {
   VoxelGrid grid;
-  double x0, y0, pixel, first, height;
+  double x0, y0, pixel;
+  SlicePlanes planes;
   LayerVoxels(const PixelGrid& g, const OverhangRule& rule, double top)
-      : x0(g.x0), y0(g.y0), pixel(g.pixel), first(rule.first_layer_height), height(rule.layer_height) {
+      : x0(g.x0), y0(g.y0), pixel(g.pixel), planes{rule.first_layer_height, rule.layer_height} {
     grid.cells = Eigen::Vector3i(g.nx, g.ny, static_cast<int>(std::max(0.0, layer(top))) + 2);
   }
-  double layer(double z) const { return (z - first) / height + 1.5; }
+  double layer(double z) const { return (z - planes.first_height) / planes.height + 1.5; }
   // The slice heights around z: the top of the layer below z's layer and the top of z's layer.
-  double slice_below(double z) const { return first + (std::floor(layer(z)) - 1.5) * height; }
-  double slice_above(double z) const { return first + (std::floor(layer(z)) - 0.5) * height; }
+  double slice_below(double z) const { return planes.slice_z(planes.layer_of(z) - 1); }
+  double slice_above(double z) const { return planes.slice_z(planes.layer_of(z)); }
   Vec3 to_grid(const Vec3& p) const { return Vec3((p.x() - x0) / pixel, (p.y() - y0) / pixel, layer(p.z())); }
 };
 
@@ -176,12 +178,45 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
   return kind;
 }
 
+// Triangle a, b, c clipped to the half-spaces n·p <= d (convex_polygon.h): at most 6 corners,
+// fewer than 3 when nothing is left.
+using Clipped = ConvexPolygon<6>;
+Clipped clip_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const std::array<std::pair<Vec3, double>, 3>& planes) {
+  Clipped poly, next;
+  poly.p[0] = a, poly.p[1] = b, poly.p[2] = c, poly.n = 3;
+  for (const auto& [n, d] : planes) {
+    double dist[6];
+    bool inside[6];
+    for (int i = 0; i < poly.n; ++i) {
+      dist[i] = n.dot(poly.p[static_cast<size_t>(i)]) - d;
+      inside[i] = dist[i] <= 0;
+    }
+    clip_convex_polygon(poly, dist, inside, next);
+    poly = next;
+    if (poly.n < 3) break;
+  }
+  return poly;
+}
+
+// The triangle a, b, c (or the segment a-b as a, b, b) marked between the heights shown.
+void mark_feature_between(const LayerVoxels& voxels, const Vec3& a, const Vec3& b, const Vec3& c, const ShownHeights& shown,
+                          bool dense, std::vector<PixelOverhang>& out) {
+  if (std::min({a.z(), b.z(), c.z()}) >= shown.low && std::max({a.z(), b.z(), c.z()}) <= shown.high)
+    return mark_feature(voxels, a, b, c, dense, out);
+  const std::pair<Vec3, double> below{Vec3(0, 0, 1), shown.high}, above{Vec3(0, 0, -1), -shown.low};
+  const Clipped part = clip_triangle(a, b, c, {below, above, above});
+  for (int i = 1; i + 1 < part.n; ++i)
+    mark_feature(voxels, part.p[0], part.p[static_cast<size_t>(i)], part.p[static_cast<size_t>(i + 1)], dense, out);
+  if (part.n == 2) mark_feature(voxels, part.p[0], part.p[1], part.p[1], dense, out);
+}
+
 // Bottom creases and lowest vertices: the first slice of a keel or a tip is an island with nothing
 // below it, which slicers support whatever the slope of the faces around it. The faces around each
 // vertex (counting sort, no hashing) give every edge's other face. Faces [first, end) for the
 // creases; vertices [first, end) for the tips.
-void mark_creases(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule, const LayerVoxels& voxels,
-                  Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) {
+void mark_creases(const Surface& s, const FaceAdjacency& adj, const std::vector<RegionExtent>& extents, const OverhangRule& rule,
+                  const LayerVoxels& voxels, Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) {
+  const double margin = rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0);
   const double cos_max_slope = std::cos(rule.max_slope_deg * M_PI / 180.0);
   const double cos2_max_slope = cos_max_slope * cos_max_slope;
   const double reach_overhang = 1.0 / std::tan(rule.max_slope_deg * M_PI / 180.0);
@@ -210,7 +245,10 @@ void mark_creases(const Surface& s, const FaceAdjacency& adj, const OverhangRule
       const Vec3 d = vertex(x), n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
       if (!rises_from(b, a, d) || !(n1.dot(d - a) < 0)) continue;
       const double reach = crease_reach(a, b, n1, n2);
-      if (reach > reach_overhang) mark_feature(voxels, a, b, b, reach > reach_dense, out);
+      if (!(reach > reach_overhang)) continue;
+      const ShownHeights shown = shown_heights(std::min(a.z(), b.z()), std::max(a.z(), b.z()), reach,
+                                               feature_extent(extents, std::array<int, 2>{u, v}), voxels.planes, margin);
+      mark_feature_between(voxels, a, b, b, shown, reach > reach_dense, out);
     }
   }
 }
@@ -231,32 +269,12 @@ void mark_tips(const Surface& s, const FaceAdjacency& adj, const LayerVoxels& vo
   }
 }
 
-// Triangle a, b, c clipped to the half-spaces n·p <= d (convex_polygon.h): at most 6 corners,
-// fewer than 3 when nothing is left.
-using Clipped = ConvexPolygon<6>;
-Clipped clip_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const std::array<std::pair<Vec3, double>, 3>& planes) {
-  Clipped poly, next;
-  poly.p[0] = a, poly.p[1] = b, poly.p[2] = c, poly.n = 3;
-  for (const auto& [n, d] : planes) {
-    double dist[6];
-    bool inside[6];
-    for (int i = 0; i < poly.n; ++i) {
-      dist[i] = n.dot(poly.p[static_cast<size_t>(i)]) - d;
-      inside[i] = dist[i] <= 0;
-    }
-    clip_convex_polygon(poly, dist, inside, next);
-    poly = next;
-    if (poly.n < 3) break;
-  }
-  return poly;
-}
-
 // Where an overhang region ends across edge a-b on a face g that looks down but is steeper (or a
 // dropped lip), the slicer's overhang in the layers of that edge still starts at the outline of
 // the slice below, which lies on g: it grows what passes its threshold back by one layer's reach,
 // kept to the layer's own strip. Marks g's part between the slices around the edge and within the
 // reach of it.
-void mark_strip_below(const Surface& s, int g, const Vec3& a, const Vec3& b, double reach, bool dense,
+void mark_strip_below(const Surface& s, int g, const Vec3& a, const Vec3& b, double reach, const ShownHeights& shown, bool dense,
                       const LayerVoxels& voxels, std::vector<PixelOverhang>& out) {
   const Vec3 p = s.V.row(s.F(g, 0)), q = s.V.row(s.F(g, 1)), r = s.V.row(s.F(g, 2));
   const Vec2 e = (b - a).head<2>();
@@ -265,7 +283,8 @@ void mark_strip_below(const Surface& s, int g, const Vec3& a, const Vec3& b, dou
   if (away.dot(((p + q + r) / 3.0 - a).head<2>()) < 0) away = -away;  // towards g
   // Inside the slices by a hair: the voxel cells are closed, and a strip ending on a slice would
   // touch the layer beyond it too.
-  const double z_low = voxels.slice_below(std::min(a.z(), b.z())) + 1e-6, z_high = voxels.slice_above(std::max(a.z(), b.z())) - 1e-6;
+  const double z_low = std::max(shown.low, voxels.slice_below(std::min(a.z(), b.z())) + 1e-6);
+  const double z_high = std::min(shown.high, voxels.slice_above(std::max(a.z(), b.z())) - 1e-6);
   const Clipped strip = clip_triangle(p, q, r, {{{Vec3(0, 0, -1), -z_low}, {Vec3(0, 0, 1), z_high},
                                                   {Vec3(away.x(), away.y(), 0), away.dot(a.head<2>()) + reach}}});
   for (int i = 1; i + 1 < strip.n; ++i)
@@ -277,22 +296,26 @@ void mark_strip_below(const Surface& s, int g, const Vec3& a, const Vec3& b, dou
 // reach both ways along their level direction (where a region ends along the part's outline its
 // contact runs on that far into the steeper faces beside it), and across their edges onto steeper
 // faces below (mark_strip_below).
-void mark_overhangs(const Surface& s, const FaceAdjacency& adj, const std::vector<char>& kind, const OverhangRule& rule,
-                    const LayerVoxels& voxels, Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) {
+void mark_overhangs(const Surface& s, const FaceAdjacency& adj, const std::vector<char>& kind, const std::vector<RegionExtent>& extents,
+                    const OverhangRule& rule, const LayerVoxels& voxels, Eigen::Index first, Eigen::Index end,
+                    std::vector<PixelOverhang>& out) {
   const double reach = rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0);
   for (int f = static_cast<int>(first); f < end; ++f) {
     if (!kind[f]) continue;
     const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
     const bool dense = (kind[f] & 3) == 2;
-    mark_feature(voxels, a, b, c, dense, out);
     const Vec3 n = (b - a).cross(c - a);
+    const double run = n.head<2>().norm() > 0 ? -n.z() / n.head<2>().norm() : INFINITY;  // per height
+    const ShownHeights shown = shown_heights(std::min({a.z(), b.z(), c.z()}), std::max({a.z(), b.z(), c.z()}), run,
+                                             feature_extent(extents, s.F.row(f)), voxels.planes, reach);
+    mark_feature_between(voxels, a, b, c, shown, dense, out);
     if (!(kind[f] & 4) || !(n.head<2>().norm() > 0)) continue;
     const Vec3 along = Vec3(-n.y(), n.x(), 0.0).normalized() * reach;  // the face's level direction
-    for (double side : {-1.0, 1.0}) mark_feature(voxels, a + side * along, b + side * along, c + side * along, dense, out);
+    for (double side : {-1.0, 1.0}) mark_feature_between(voxels, a + side * along, b + side * along, c + side * along, shown, dense, out);
     for (int k = 0; k < 3; ++k) {
       const int g = adj.across(f, k).face;
       if (g >= 0 && !(kind[g] & 3))
-        mark_strip_below(s, g, s.V.row(s.F(f, k)), s.V.row(s.F(f, (k + 1) % 3)), reach, dense, voxels, out);
+        mark_strip_below(s, g, s.V.row(s.F(f, k)), s.V.row(s.F(f, (k + 1) % 3)), reach, shown, dense, voxels, out);
     }
   }
 }
@@ -302,12 +325,13 @@ void mark_overhangs(const Surface& s, const FaceAdjacency& adj, const std::vecto
 std::vector<PixelOverhang> overhang_features(const Surface& s, const FaceAdjacency& adj, const PixelGrid& g, const OverhangRule& rule) {
   const LayerVoxels voxels(g, rule, s.V.col(2).maxCoeff());
   const std::vector<char> kind = overhanging_faces(s, adj, rule);
+  const std::vector<RegionExtent> extents = region_extents(s, adj, kind);
   using Part = std::vector<PixelOverhang>;
   Part out = gather_in_ranges<PixelOverhang>(
-      s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_overhangs(s, adj, kind, rule, voxels, a, b, part); });
+      s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_overhangs(s, adj, kind, extents, rule, voxels, a, b, part); });
   for (const Part& more :
        {rule.creases ? gather_in_ranges<PixelOverhang>(
-                           s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_creases(s, adj, rule, voxels, a, b, part); })
+                           s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_creases(s, adj, extents, rule, voxels, a, b, part); })
                      : Part{},
         rule.tips ? gather_in_ranges<PixelOverhang>(
                         s.V.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_tips(s, adj, voxels, a, b, part); })

@@ -27,6 +27,9 @@
 //     layer_height / tan(max slope) with square corners (the first slices of a keel are thin
 //     islands with nothing below them); dense past the dense reach;
 //   - a lowest vertex: below all its neighbours, on at least 3 faces; dense.
+// A face or crease of a region shows in its top (bottom) layer only where its region, topping out
+// (bottoming out) in that layer, reaches the slicer's margin past the slice below there
+// (region_extent.h): a flare that ends just past a slice adds nothing to that layer.
 // Cost: O(#F + pixels touched); faces, creases and tips found on the OpenMP threads in ranges
 // gathered in order, so the output does not depend on the thread count.
 #pragma once

@@ -2,6 +2,7 @@
 // checked against the layer-by-layer geometry worked out by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <vector>
@@ -55,6 +56,38 @@ TEST(OverhangFeatures, AnOverhangsEdgeReachesOverTheSteeperFaceBelowInItsOwnLaye
   // and stays in column 20.
   EXPECT_TRUE(layers_in_column(8.52, 19).empty());
   EXPECT_FALSE(layers_in_column(8.52, 20).empty());
+}
+
+// The highest object layer any feature of a foot shows in: a cylinder of radius 3 on the plate
+// whose profile (r, z) flares out as given and then rises as a wall to z = 5.
+int highest_layer_of_foot(const std::vector<Eigen::Vector2d>& flare) {
+  std::vector<Eigen::Vector2d> profile{{0, 0}, {3, 0}};
+  profile.insert(profile.end(), flare.begin(), flare.end());
+  profile.push_back({flare.back().x(), 5.0});
+  profile.push_back({0, 5.0});
+  const Surface s = test::revolve(profile, 64);
+  PixelGrid g;
+  g.pixel = 0.25;
+  g.x0 = g.y0 = -5.0;
+  g.nx = g.ny = 40;
+  int highest = -1;
+  for (const PixelOverhang& o : overhang_features(s, FaceAdjacency(s), g, OverhangRule{})) highest = std::max(highest, o.layer_high);
+  return highest;
+}
+
+TEST(OverhangFeatures, AFootsFlareShowsOnlyInTheLayersWhereItReachesTheMargin) {
+  // Slices at 0.1, 0.3, 0.5, 0.7 mm; an overhang in layer k needs the slice at 0.2k + 0.1 to reach
+  // 0.193 mm (0.2 / tan 46°) past the one below; its contact lies a layer under layer k - 1, so
+  // only layer 2 and up put support under the first layer.
+  // To r = 3.35 at z = 0.32: the slices at 0.1, 0.3, 0.5 reach 3.109, 3.328, 3.35: 0.219 past in
+  // layer 1, 0.022 in layer 2. (PrusaSlicer 2.5 builds no support under this foot.)
+  EXPECT_EQ(highest_layer_of_foot({{3.35, 0.32}}), 1);
+  // 45° to r = 3.25 at 0.25, a wall to 0.45, a flare to 3.5 at 0.6: 0.15, 0.083 and 0.167 past in
+  // layers 1, 2 and 3: no layer reaches the margin. (PrusaSlicer: no support.)
+  EXPECT_LE(highest_layer_of_foot({{3.25, 0.25}, {3.25, 0.45}, {3.5, 0.6}}), 1);
+  // To r = 3.8 at 0.75: 0.213 past in layers 1 to 3, 0.053 in layer 4. (PrusaSlicer: a first layer
+  // of support around the foot.)
+  EXPECT_EQ(highest_layer_of_foot({{3.8, 0.75}}), 3);
 }
 
 }  // namespace

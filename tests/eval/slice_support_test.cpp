@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <vector>
 
 #include "gcode_extrusion.h"
 #include "print_setup.h"
@@ -202,6 +203,40 @@ TEST(SliceSupport, TheSupportModelsBaseFollowsPrusaSlicersZigzagAlongASteppedOut
     const double model_base = e.base_fill_mm3 + e.sheath_mm3 + e.first_layer_mm3;
     ASSERT_GT(prusa_base, 1000.0);
     EXPECT_NEAR(model_base / prusa_base, 1.0, 0.03) << model_base << " against " << prusa_base;
+  }
+}
+
+TEST(SliceSupport, TheSupportModelSeesAFootsFlareWherePrusaSlicerDoes) {
+  // A foot: radius 3 at the plate, flaring out, then a wall to 5 mm. A slicer sees an overhang in a
+  // layer where the slice reaches past the one below by its margin; a contact under layer 1 would
+  // lie under the first layer and is dropped. Flaring within the first two slices (to 0.32 mm), or
+  // in steps that never reach the margin in one layer, the foot gets no support; flaring over four
+  // layers (to 0.75 mm), it gets a first layer around it.
+  const fs::path dir = scratch("slice_support_feet");
+  SupportModelOptions at_slicer_phase;
+  at_slicer_phase.grid_phases = 1;
+  at_slicer_phase.turns = 2;
+  const std::vector<std::vector<Eigen::Vector2d>> flares{
+      {{3.35, 0.32}}, {{3.25, 0.25}, {3.25, 0.45}, {3.5, 0.6}}, {{3.8, 0.75}}};
+  for (size_t i = 0; i < flares.size(); ++i) {
+    SCOPED_TRACE(i);
+    std::vector<Eigen::Vector2d> profile{{0, 0}, {3, 0}};
+    profile.insert(profile.end(), flares[i].begin(), flares[i].end());
+    profile.push_back({flares[i].back().x(), 5.0});
+    profile.push_back({0, 5.0});
+    const Surface foot = test::revolve(profile, 64);
+    const fs::path stl = dir / ("foot_" + std::to_string(i) + ".stl");
+    vcgx::save_surface(stl.string(), foot);
+    const test::CommandRun p = slice(stl, "prusa", dir / ("prusa_" + std::to_string(i)), "--turns 0,90");
+    ASSERT_EQ(p.exit_code, 0) << p.output;
+    const double prusa = parse_metrics(p.output).at("support_mm3"), model = estimate_support(foot, at_slicer_phase).volume_mm3;
+    if (i < 2) {
+      EXPECT_LT(prusa, 1.0);
+      EXPECT_LT(model, 1.0);
+    } else {
+      EXPECT_GT(prusa, 20.0);
+      EXPECT_NEAR(model / prusa, 1.0, 0.15) << model << " against " << prusa;
+    }
   }
 }
 

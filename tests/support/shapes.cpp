@@ -204,9 +204,6 @@ double bbox_diagonal(const Surface& s) { return (s.V.colwise().maxCoeff() - s.V.
 
 namespace slim::test {
 
-namespace {
-// Revolves a profile (r, z) about +Z; the first and last points must lie on the axis (r = 0) and
-// the profile runs bottom to top so that the faces point outwards.
 Surface revolve(const std::vector<Eigen::Vector2d>& profile, int segments) {
   std::vector<Eigen::Vector3d> v;
   std::vector<Eigen::Vector3i> f;
@@ -233,6 +230,7 @@ Surface revolve(const std::vector<Eigen::Vector2d>& profile, int segments) {
   return from_lists(v, f);
 }
 
+namespace {
 // Ear-clipping triangulation of a simple counter-clockwise polygon (test shapes only).
 std::vector<Eigen::Vector3i> ear_clip(const std::vector<Eigen::Vector2d>& p) {
   std::vector<int> idx(p.size());

@@ -70,6 +70,10 @@ double bbox_diagonal(const Surface& s);
 
 namespace slim::test {
 
+// A solid of revolution about +Z: the profile (r, z) runs from a point on the axis at the bottom
+// up to one on the axis at the top (faces outward), turned in `segments` steps.
+Surface revolve(const std::vector<Eigen::Vector2d>& profile, int segments);
+
 // A mushroom: a solid of revolution about +Z, stem radius 3 and height 10 on the plate, with a
 // cap of radius 10 whose underside (z from 10 at the stem to 11 at the rim) overhangs.
 Surface mushroom(int segments = 48);
