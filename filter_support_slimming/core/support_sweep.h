@@ -17,7 +17,8 @@
 //     a feature over a pixel inside the part just below it (the pixel and its four neighbours
 //     filled) is hidden and ignored, but one on the part's outline there counts: the slicer
 //     rasterises its contacts with any coverage, so a sliver of one reaches the cell;
-//   - a cell is a column at j when it has a contact at j, or was one at j + 1 and the projection
+//   - a cell is a column at j when it has a contact at j (j >= 1: a contact in the first layer
+//     alone builds nothing, PrusaSlicer takes it out of the first layer), or was one at j + 1 and the projection
 //     passes: some pixel of it is free of the part in object layers j and j + 1, or lies on the
 //     part's outline there (a neighbour free). The slicer fills its grid cells up to the part eroded
 //     by one of its pixels and keeps any sliver of a cell the part leaves free, so a column whose
@@ -35,8 +36,9 @@
 //     alternate ends into a zigzag by links that run along the island's outline, out along a row
 //     past a line's end to where the row ends and back (half a link per end); pixels where a
 //     column meets the part's top get a bottom interface;
-//   - the first layer: the columns' pixels grown by first_layer_expansion around, not through, the
-//     part, at its own density, with a sheath.
+//   - the first layer: the base columns' pixels grown by first_layer_expansion around, not
+//     through, the part, less the interface columns' pixels, at its own density, with a sheath;
+//     the interface columns there are dense layers like any other.
 // Pixel outlines are staircases; their length is scaled by pi/4 (the mean ratio for outlines of
 // every direction), except along cell sides, which are straight.
 #pragma once
@@ -126,7 +128,8 @@ class GridSupportSweep {
                     std::vector<RawEvent>& raw) const;
   void outline_events(const std::vector<int>& trim_begin, const std::vector<std::pair<int, int>>& trims,
                       std::vector<RawEvent>& raw) const;
-  double first_layer(const std::vector<int>& columns, int cells_x, int offset_x, int offset_y) const;
+  double first_layer(const std::vector<int>& columns, const std::vector<int>& interface_cells, int cells_x, int offset_x,
+                     int offset_y) const;
 
   PixelGrid grid_;
   SlicerLayers layers_;

@@ -172,7 +172,9 @@ GridSweepResult GridSupportSweep::run(int ox, int oy) const {
       st.seen[c] = j;
       const bool above = st.column_above[c] != 0;
       if (above) landing += st.count[c].kind[kTop] * p2;
-      const bool contact = st.count[c].kind[kContact] > 0;
+      // A contact in the first layer alone builds nothing: PrusaSlicer takes the first layer's
+      // contacts out of its base and prints them nowhere (there is no raft to put them on).
+      const bool contact = j > 0 && st.count[c].kind[kContact] > 0;
       if (!contact && !(above && st.count[c].kind[kBlock] < full)) return;
       st.now.push_back(c);
       if (st.count[c].kind[kDense] > 0) {
@@ -210,8 +212,15 @@ GridSweepResult GridSupportSweep::run(int ox, int oy) const {
       out.top_interface += dense;
       out.layer[j] += fill + sheath + dense;
     } else {
-      out.first_layer = first_layer(st.now, map.cx, ox, oy);
-      out.layer[0] += out.first_layer;
+      // PrusaSlicer grows the first layer's base by first_layer_expansion and prints the interface
+      // there (under a contact within its depth) as it is, without the growth: it takes the
+      // interface out of the grown base.
+      std::vector<int> base_cells, interface_cells;
+      for (int c : st.now) (st.interface_weight[c] < 0.5 ? base_cells : interface_cells).push_back(c);
+      const double dense = t * f.interface_area * rate.interface_per_mm3;
+      out.top_interface += dense;
+      out.first_layer = first_layer(base_cells, interface_cells, map.cx, ox, oy);
+      out.layer[0] += out.first_layer + dense;
     }
     for (int c : st.above) st.column_above[c] = 0;
     for (int c : st.now) st.column_above[c] = 1;
@@ -220,10 +229,11 @@ GridSweepResult GridSupportSweep::run(int ox, int oy) const {
   return out;
 }
 
-// The first layer: the columns' free pixels grown by first_layer_expansion in steps that go
-// around the part's first slice (alternately to the 4 and the 8 neighbours: an octagon), filled
-// at the first layer's density, with a sheath.
-double GridSupportSweep::first_layer(const std::vector<int>& columns, int cells_x, int ox, int oy) const {
+// The first layer: the base columns' free pixels grown by first_layer_expansion in steps that go
+// around the part's first slice (alternately to the 4 and the 8 neighbours: an octagon), less the
+// interface cells' pixels, filled at the first layer's density, with a sheath.
+double GridSupportSweep::first_layer(const std::vector<int>& columns, const std::vector<int>& interface_cells, int cells_x,
+                                     int ox, int oy) const {
   const int nx = grid_.nx, ny = grid_.ny, S = settings_.pixels_per_cell;
   const int steps = static_cast<int>(std::lround(settings_.first_layer_expansion / grid_.pixel));
   int i0 = nx, i1 = -1, j0 = ny, j1 = -1;
@@ -242,12 +252,18 @@ double GridSupportSweep::first_layer(const std::vector<int>& columns, int cells_
       const int i = wi0 + a, j = wj0 + b;
       if (i >= 0 && j >= 0 && i < nx && j < ny) code[a + w * b] = solid_first_[i + nx * j] ? 2 : 0;
     }
-  for (int c : columns) {
+  auto each_pixel = [&](int c, auto&& visit) {  // the window's pixels of cell c
     const int ci = c % cells_x, cj = c / cells_x;
-    for (int j = std::max(0, cj * S - S + oy); j < std::min(ny, cj * S + oy); ++j)
-      for (int i = std::max(0, ci * S - S + ox); i < std::min(nx, ci * S + ox); ++i)
-        if (!trimmed_first_[i + nx * j]) code[(i - wi0) + w * (j - wj0)] = 1;
-  }
+    for (int j = std::max(wj0, std::max(0, cj * S - S + oy)); j < std::min(wj0 + h, std::min(ny, cj * S + oy)); ++j)
+      for (int i = std::max(wi0, std::max(0, ci * S - S + ox)); i < std::min(wi0 + w, std::min(nx, ci * S + ox)); ++i)
+        visit(i, j, (i - wi0) + w * (j - wj0));
+  };
+  for (int c : columns)
+    each_pixel(c, [&](int i, int j, int q) {
+      if (!trimmed_first_[i + nx * j]) code[q] = 1;
+    });
+  std::vector<std::uint8_t> interface(code.size(), 0);
+  for (int c : interface_cells) each_pixel(c, [&](int, int, int q) { interface[q] = 1; });
   // Grown in steps to the 4 and then the 8 neighbours (an octagon), never into the part.
   std::vector<std::uint8_t> next;
   for (int step = 0; step < steps; ++step) {
@@ -267,10 +283,10 @@ double GridSupportSweep::first_layer(const std::vector<int>& columns, int cells_
   for (int b = 1; b + 1 < h; ++b)
     for (int a = 1; a + 1 < w; ++a) {
       const int q = a + w * b;
-      if (code[q] != 1) continue;
+      if (code[q] != 1 || interface[q]) continue;
       area += 1.0;
       for (int r : {q - 1, q + 1, q - w, q + w}) {
-        if (code[r] == 1) continue;
+        if (code[r] == 1 && !interface[r]) continue;
         outline += 1.0;
         along_part += code[r] == 2;
       }

@@ -120,10 +120,10 @@ Voxels voxels(const SupportRaster& r, const SlicerLayers& L, const GridSweepSett
   return v;
 }
 
-// The first layer by its definition: columns' free pixels, grown in alternating 4- and
-// 8-neighbour steps around the part's first slice.
+// The first layer by its definition: the base columns' free pixels, grown in alternating 4- and
+// 8-neighbour steps around the part's first slice, less the interface columns' pixels.
 double first_layer(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, const SweepRates& rate,
-                   const std::vector<int>& cell, const std::vector<char>& column) {
+                   const std::vector<int>& cell, const std::vector<char>& column, const std::vector<char>& interface) {
   std::vector<char> region(static_cast<size_t>(v.n), 0);
   for (int p = 0; p < v.n; ++p) region[p] = column[cell[p]] && !v.at(v.trim, p, 0);
   const int steps = static_cast<int>(std::lround(s.first_layer_expansion / g.pixel));
@@ -142,6 +142,7 @@ double first_layer(Voxels& v, const PixelGrid& g, const GridSweepSettings& s, co
     }
     region.swap(next);
   }
+  for (int p = 0; p < v.n; ++p) region[p] = region[p] && !interface[cell[p]];
   double area = 0, outline = 0, along = 0;
   for (int p = 0; p < v.n; ++p) {
     if (!region[p]) continue;
@@ -308,7 +309,7 @@ GridSweepResult reference_sweep(const SupportRaster& r, const SlicerLayers& L, c
         out.landing_area += tops * p2;
         out.bottom_interface += tops * p2 * rates[j].bottom_interface_per_mm2;
       }
-      now[c] = contact || (above[c] && pass);
+      now[c] = (contact && j > 0) || (above[c] && pass);  // a contact in the first layer alone builds nothing
       dense[c] = !now[c] ? 1e9 : has_dense ? 0 : above[c] ? dense[c] + 1 : 1e9;
       if (now[c] && has_dense) depth[c] = rates[j].interface_depth;
       weight[c] = std::clamp(depth[c] - dense[c], 0.0, 1.0);
@@ -321,8 +322,11 @@ GridSweepResult reference_sweep(const SupportRaster& r, const SlicerLayers& L, c
       out.base_fill += t * std::max(0.0, sum.fill) * rates[j].line_per_mm2;
       out.sheath += t * sum.outline * rates[j].line_per_mm2;
       out.top_interface += t * sum.iface * rates[j].interface_per_mm3;
-    } else {
-      out.first_layer = first_layer(v, g, s, rates[0], ph.cell, now);
+    } else {  // the base grown, the interface as it is
+      std::vector<char> base(cells, 0), interface(cells, 0);
+      for (size_t c = 0; c < cells; ++c) (weight[c] < 0.5 ? base : interface)[c] = now[c];
+      out.top_interface += t * sum.iface * rates[0].interface_per_mm3;
+      out.first_layer = first_layer(v, g, s, rates[0], ph.cell, base, interface);
     }
     above = now;
   }
