@@ -1,24 +1,58 @@
 #include "core/region_extent.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <utility>
 
 #include "core/face_adjacency.h"
+#include "core/parallel_for.h"
 
 namespace slim {
 namespace {
 
-// The steepest wall outside the regions at vertex v: the largest horizontal run per height of the
-// faces around it that look down and rise from it (side = +1) or fall from it (side = -1).
-double wall_run(const Surface& s, const FaceAdjacency& adj, const std::vector<char>& in_region, int v, double side) {
-  double run = 0.0;
+// The steepest walls outside the regions at vertex v: the largest horizontal run per height of the
+// faces around it that look down and rise from it (above) or fall from it (below).
+std::pair<double, double> wall_runs(const Surface& s, const FaceAdjacency& adj, const std::vector<char>& in_region, int v) {
+  double above = 0.0, below = 0.0;
   for (const int* f = adj.faces_begin(v); f != adj.faces_end(v); ++f) {
     if (in_region[*f]) continue;
     const Eigen::Vector3d n = face_cross(s.V, s.F, *f);
+    const double level = n.head<2>().norm();
+    if (!(n.z() < 0) || !(level > 0)) continue;
     double rise = 0.0;
     for (int u : adj.face(*f)) rise += s.V(u, 2) - s.V(v, 2);
-    if (n.z() < 0 && n.head<2>().norm() > 0 && side * rise > 0) run = std::max(run, -n.z() / n.head<2>().norm());
+    if (rise > 0) above = std::max(above, -n.z() / level);
+    if (rise < 0) below = std::max(below, -n.z() / level);
   }
-  return run;
+  return {above, below};
+}
+
+// Vertices sorted by height, highest first (ties by index): an LSD radix sort of the heights'
+// order-preserving 64-bit keys, 16 bits a pass.
+void sort_by_height(const Surface& s, std::vector<int>& order) {
+  auto key = [&](int v) {
+    std::uint64_t bits;
+    const double z = s.V(v, 2) + 0.0;  // -0 and +0 alike
+    std::memcpy(&bits, &z, sizeof bits);
+    bits = (bits >> 63) ? ~bits : bits | (std::uint64_t{1} << 63);  // ascending as unsigned
+    return ~bits;  // highest first
+  };
+  std::vector<std::uint64_t> keys(order.size()), keys_next(order.size());
+  for (size_t i = 0; i < order.size(); ++i) keys[i] = key(order[i]);
+  std::vector<int> next(order.size());
+  for (int shift = 0; shift < 64; shift += 16) {
+    std::vector<size_t> count((1 << 16) + 1, 0);
+    for (std::uint64_t k : keys) ++count[((k >> shift) & 0xFFFF) + 1];
+    for (size_t d = 1; d < count.size(); ++d) count[d] += count[d - 1];
+    for (size_t i = 0; i < order.size(); ++i) {
+      const size_t at = count[(keys[i] >> shift) & 0xFFFF]++;
+      next[at] = order[i];
+      keys_next[at] = keys[i];
+    }
+    order.swap(next);
+    keys.swap(keys_next);
+  }
 }
 
 }  // namespace
@@ -26,30 +60,41 @@ double wall_run(const Surface& s, const FaceAdjacency& adj, const std::vector<ch
 std::vector<RegionExtent> region_extents(const Surface& s, const FaceAdjacency& adj, const std::vector<char>& in_region) {
   const int nv = static_cast<int>(s.V.rows());
   std::vector<RegionExtent> out(static_cast<size_t>(nv));
-  std::vector<int> order;
-  for (int v = 0; v < nv; ++v) {
-    bool in = false;
-    for (const int* f = adj.faces_begin(v); f != adj.faces_end(v) && !in; ++f) in = in_region[*f] != 0;
-    if (!in) continue;
+  std::vector<char> in(static_cast<size_t>(nv), 0);
+  for (int f = 0; f < s.F.rows(); ++f)
+    if (in_region[f])
+      for (int k = 0; k < 3; ++k) in[s.F(f, k)] = 1;
+  std::vector<int> order;  // the regions' vertices, highest first
+  for (int v = 0; v < nv; ++v)
+    if (in[v]) order.push_back(v);
+  parallel_for(static_cast<int>(order.size()), [&](int i) {
+    const int v = order[i];
     const double z = s.V(v, 2);
-    out[v] = {z, wall_run(s, adj, in_region, v, 1.0), z, wall_run(s, adj, in_region, v, -1.0)};
-    order.push_back(v);
-  }
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return s.V(a, 2) > s.V(b, 2); });
+    const auto [above, below] = wall_runs(s, adj, in_region, v);
+    out[v] = {z, above, z, below};
+  });
+  sort_by_height(s, order);
   // Downwards, every higher neighbour along a region face is final when v is reached; upwards, the
   // same for every lower one.
   auto spread = [&](int v, bool up) {
+    RegionExtent& to = out[v];
+    const double z = s.V(v, 2);
     for (const int* f = adj.faces_begin(v); f != adj.faces_end(v); ++f) {
       if (!in_region[*f]) continue;
       for (int u : adj.face(*f)) {
-        RegionExtent &to = out[v], &from = out[u];
-        if (up && s.V(u, 2) > s.V(v, 2) && from.top > to.top) to.top = from.top, to.run_above = from.run_above;
-        if (!up && s.V(u, 2) < s.V(v, 2) && from.bottom < to.bottom) to.bottom = from.bottom, to.run_below = from.run_below;
+        const RegionExtent& from = out[u];
+        if (up && s.V(u, 2) > z && from.top > to.top) to.top = from.top, to.run_above = from.run_above;
+        if (!up && s.V(u, 2) < z && from.bottom < to.bottom) to.bottom = from.bottom, to.run_below = from.run_below;
       }
     }
   };
-  for (int v : order) spread(v, true);
-  for (auto v = order.rbegin(); v != order.rend(); ++v) spread(*v, false);
+  // The two spreads touch different fields: one thread each.
+  parallel_for(2, [&](int down) {
+    if (!down)
+      for (int v : order) spread(v, true);
+    else
+      for (auto it = order.rbegin(); it != order.rend(); ++it) spread(*it, false);
+  });
   return out;
 }
 
