@@ -41,6 +41,10 @@ struct LayerVoxels {
   Vec3 to_grid(const Vec3& p) const { return Vec3((p.x() - x0) / pixel, (p.y() - y0) / pixel, layer(p.z())); }
 };
 
+// How far a slice must reach past the slice below to overhang there (mm): one layer's run at the
+// threshold slope.
+double slicer_margin(const OverhangRule& rule) { return rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0); }
+
 // Marks every pixel the feature (a triangle, or a segment a-b given as the triangle a, b, b)
 // overlaps, with the layers it meets there: the voxel rasterizer of the domain, exact (closed
 // cells, so a feature ending on a boundary touches both sides).
@@ -155,7 +159,7 @@ std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, 
       r.side_cot += length * -ng.z() / ng.head<2>().norm();
     }
   }
-  const double reach = rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0);
+  const double reach = slicer_margin(rule);
   const double reach_dense = rule.layer_height / std::tan(rule.dense_slope_deg * M_PI / 180.0);
   for (int i = 0; i < no; ++i) {
     const int f = over[i];
@@ -216,7 +220,7 @@ void mark_feature_between(const LayerVoxels& voxels, const Vec3& a, const Vec3& 
 // creases; vertices [first, end) for the tips.
 void mark_creases(const Surface& s, const FaceAdjacency& adj, const std::vector<RegionExtent>& extents, const OverhangRule& rule,
                   const LayerVoxels& voxels, Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) {
-  const double margin = rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0);
+  const double margin = slicer_margin(rule);
   const double cos_max_slope = std::cos(rule.max_slope_deg * M_PI / 180.0);
   const double cos2_max_slope = cos_max_slope * cos_max_slope;
   const double reach_overhang = 1.0 / std::tan(rule.max_slope_deg * M_PI / 180.0);
@@ -299,7 +303,7 @@ void mark_strip_below(const Surface& s, int g, const Vec3& a, const Vec3& b, dou
 void mark_overhangs(const Surface& s, const FaceAdjacency& adj, const std::vector<char>& kind, const std::vector<RegionExtent>& extents,
                     const OverhangRule& rule, const LayerVoxels& voxels, Eigen::Index first, Eigen::Index end,
                     std::vector<PixelOverhang>& out) {
-  const double reach = rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0);
+  const double reach = slicer_margin(rule);
   for (int f = static_cast<int>(first); f < end; ++f) {
     if (!kind[f]) continue;
     const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));

@@ -58,14 +58,9 @@ TEST(OverhangFeatures, AnOverhangsEdgeReachesOverTheSteeperFaceBelowInItsOwnLaye
   EXPECT_FALSE(layers_in_column(8.52, 20).empty());
 }
 
-// The highest object layer any feature of a foot shows in: a cylinder of radius 3 on the plate
-// whose profile (r, z) flares out as given and then rises as a wall to z = 5.
+// The highest object layer any feature of a foot (test::flared_foot) shows in.
 int highest_layer_of_foot(const std::vector<Eigen::Vector2d>& flare) {
-  std::vector<Eigen::Vector2d> profile{{0, 0}, {3, 0}};
-  profile.insert(profile.end(), flare.begin(), flare.end());
-  profile.push_back({flare.back().x(), 5.0});
-  profile.push_back({0, 5.0});
-  const Surface s = test::revolve(profile, 64);
+  const Surface s = test::flared_foot(flare);
   PixelGrid g;
   g.pixel = 0.25;
   g.x0 = g.y0 = -5.0;

@@ -16,7 +16,7 @@
 namespace slim {
 namespace {
 
-constexpr double kMargin = 0.2 / 1.0355303137905696;  // layer / tan(46°), PrusaSlicer's 45° + 1°
+const double kMargin = 0.2 / std::tan(46.0 * M_PI / 180.0);  // layer / tan(46°), PrusaSlicer's 45° + 1°
 
 std::vector<char> looking_down_past(const Surface& s, double slope_deg) {
   std::vector<char> in(static_cast<size_t>(s.F.rows()), 0);

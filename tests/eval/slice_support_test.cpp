@@ -221,11 +221,7 @@ TEST(SliceSupport, TheSupportModelSeesAFootsFlareWherePrusaSlicerDoes) {
       {{3.35, 0.32}}, {{3.25, 0.25}, {3.25, 0.45}, {3.5, 0.6}}, {{3.65, 0.55}}, {{3.8, 0.75}}};
   for (size_t i = 0; i < flares.size(); ++i) {
     SCOPED_TRACE(i);
-    std::vector<Eigen::Vector2d> profile{{0, 0}, {3, 0}};
-    profile.insert(profile.end(), flares[i].begin(), flares[i].end());
-    profile.push_back({flares[i].back().x(), 5.0});
-    profile.push_back({0, 5.0});
-    const Surface foot = test::revolve(profile, 64);
+    const Surface foot = test::flared_foot(flares[i]);
     const fs::path stl = dir / ("foot_" + std::to_string(i) + ".stl");
     vcgx::save_surface(stl.string(), foot);
     const test::CommandRun p = slice(stl, "prusa", dir / ("prusa_" + std::to_string(i)), "--turns 0,90");

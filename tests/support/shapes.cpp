@@ -263,6 +263,14 @@ Surface mushroom(int segments) {
   return revolve({{0, 0}, {3, 0}, {3, 10}, {10, 11}, {10, 13}, {6, 15.5}, {0, 16}}, segments);
 }
 
+Surface flared_foot(const std::vector<Eigen::Vector2d>& flare) {
+  std::vector<Eigen::Vector2d> profile{{0, 0}, {3, 0}};
+  profile.insert(profile.end(), flare.begin(), flare.end());
+  profile.push_back({flare.back().x(), 5.0});
+  profile.push_back({0, 5.0});
+  return revolve(profile, 64);
+}
+
 Surface prism_xz(const std::vector<Eigen::Vector2d>& profile, double y0, double y1) {
   return extrude_xz(profile, ear_clip(profile), y0, y1);
 }

@@ -74,6 +74,10 @@ namespace slim::test {
 // up to one on the axis at the top (faces outward), turned in `segments` steps.
 Surface revolve(const std::vector<Eigen::Vector2d>& profile, int segments);
 
+// A foot: a cylinder of radius 3 on the plate whose profile (r, z) flares out through the points
+// given and then rises as a wall to z = 5 (revolve(), 64 segments).
+Surface flared_foot(const std::vector<Eigen::Vector2d>& flare);
+
 // A mushroom: a solid of revolution about +Z, stem radius 3 and height 10 on the plate, with a
 // cap of radius 10 whose underside (z from 10 at the stem to 11 at the rim) overhangs.
 Surface mushroom(int segments = 48);
