@@ -19,9 +19,9 @@
 //     unless its connected region of such faces reaches less than half a layer's reach
 //     (layer_height / tan(slope)) beyond the layer below (a lip or a fold);
 //   - around a region's edge, what the slicer adds by growing each layer's overhang back by that
-//     reach into the layer's own strip (the slice minus the slice below): the edge faces shifted
-//     by the reach along their level direction, and the strip of a steeper face below the edge
-//     (between the slices around it, within the reach), where the slice below's outline lies;
+//     reach into the layer's own strip (the slice minus the slice below): the strip of a steeper
+//     face below the edge (between the slices around it, within the reach), where the slice
+//     below's outline lies;
 //   - a bottom crease: an edge whose two faces both rise away from it, convex, less steep than
 //     max_slope_deg, whose tip in the slice moves out of the layer below grown by
 //     layer_height / tan(max slope) with square corners (the first slices of a keel are thin

@@ -22,8 +22,7 @@
 //     than that (unless their connected region is a lip or fold too narrow to reach half as far),
 //     bottom creases whose tip moves out of the grown layer below (a keel's ridge, whatever its
 //     faces), and lowest points (a vertex below all its neighbours); each grown back by that
-//     reach into its layer's own strip (along the outline, and over the steeper face below an
-//     overhang's edge). Each marks the grid cells it touches, even by a sliver on the part's
+//     reach into its layer's own strip over the steeper face below an overhang's edge. Each marks the grid cells it touches, even by a sliver on the part's
 //     outline, at the layer of its contact, contact_distance below it; nothing under the first
 //     layer (overhang_features.h).
 //   - The grid: square cells of grid_spacing (the support lines' spacing) centred on the part's

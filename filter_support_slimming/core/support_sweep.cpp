@@ -153,8 +153,8 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
   std::vector<Range> solid, trim, block, contact, dense;
   size_t mark = 0;
   trim_begin.assign(static_cast<size_t>(n) + 1, 0);
-  std::vector<int> block_begin(static_cast<size_t>(n) + 1, 0);
-  std::vector<Range> blocks;
+  std::vector<int> block_begin(static_cast<size_t>(n) + 1, 0), solid_begin(static_cast<size_t>(n) + 1, 0);
+  std::vector<Range> blocks, solids;
   for (int p = 0; p < n; ++p) {
     solid.clear(), trim.clear(), block.clear(), contact.clear(), dense.clear();
     trim_begin[p] = static_cast<int>(trims.size());
@@ -183,6 +183,8 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
     trims.insert(trims.end(), trim.begin(), trim.end());
     block_begin[p] = static_cast<int>(blocks.size());
     blocks.insert(blocks.end(), block.begin(), block.end());
+    solid_begin[p] = static_cast<int>(solids.size());
+    solids.insert(solids.end(), solid.begin(), solid.end());
     for (const Range& x : contact) {
       add_range(raw, p, x, kContact);
       for (int j = x.first; j <= x.second; ++j) has_contact[j] = 1;
@@ -191,25 +193,53 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
   }
   trim_begin[n] = static_cast<int>(trims.size());
   block_begin[n] = static_cast<int>(blocks.size());
-  block_events(block_begin, blocks, raw);
+  solid_begin[n] = static_cast<int>(solids.size());
+  block_events({block_begin, blocks}, {solid_begin, solids}, raw);
 }
 
-// What stops a column: a pixel the part fills in both layers, and its four neighbours too. The
-// slicer's grid fill flows up to the part eroded by one of its pixels (it rasterises the part with
-// any coverage and masks a pixel only when its 3 × 3 neighbourhood is all part), and a column whose
-// cell keeps any sliver free goes on down: where the part recedes below, it fills the cell again.
-void GridSupportSweep::block_events(const std::vector<int>& block_begin, const std::vector<std::pair<int, int>>& blocks,
-                                    std::vector<RawEvent>& raw) const {
-  std::vector<Range> eroded, scratch;
-  const Range* data = blocks.data();
+namespace {
+
+// The layers at which the part's outline between pixel p and its neighbour q, though q is free,
+// lies in q's half (past the midpoint between their centres), so p's half holds no sliver of
+// support: where a run of q's solid layers starts above (ends below) one of p's, inside it, the
+// outline runs from q's centre at q's first (last) solid slice to p's centre at p's, and passes
+// the midpoint halfway between them. In layers, from the solid runs (the slicer sees slices only),
+// so a closed part reads the same along rays and slice by slice. As block layers (j - 1 .. j for a
+// slice at layer j), appended to `out` unsorted.
+void outline_in_neighbour(const Range* p, const Range* p_end, const Range* q, const Range* q_end, std::vector<Range>& out) {
+  auto add = [&](int k0, int k1) {
+    if (k0 <= k1) out.push_back({std::max(0, k0 - 1), k1});
+  };
+  for (const Range* a = p; a != p_end; ++a)
+    for (const Range* b = q; b != q_end; ++b) {
+      if (b->first > a->first && b->first <= a->second) add((a->first + b->first + 1) / 2, b->first - 1);
+      if (b->second < a->second && b->second >= a->first) add(b->second + 1, (a->second + b->second) / 2);
+    }
+}
+
+}  // namespace
+
+// What stops a column: a pixel the part fills in both layers, and its four neighbours too, or
+// those of them that are free only past the midpoint (outline_in_neighbour). The slicer's grid fill
+// flows up to the part (it rasterises the part with any coverage), and a column whose cell keeps
+// any sliver free goes on down: where the part recedes below, it fills the cell again. A sliver
+// lies on p's side of the outline, so where the outline has left p's half, p blocks: a column
+// coming down inside a bore lands on its floor instead of slipping down the outside of its wall.
+void GridSupportSweep::block_events(const PixelRanges& block, const PixelRanges& solid, std::vector<RawEvent>& raw) const {
+  std::vector<Range> eroded, scratch, covered, extra;
   for (int j = 0; j < grid_.ny; ++j) {
     for (int i = 0; i < grid_.nx; ++i) {
       const int p = i + grid_.nx * j;
-      if (block_begin[p] == block_begin[p + 1]) continue;
+      if (block.empty(p)) continue;
       if (i == 0 || j == 0 || i + 1 == grid_.nx || j + 1 == grid_.ny) continue;  // a neighbour off the raster is free
-      eroded.assign(data + block_begin[p], data + block_begin[p + 1]);
+      eroded.assign(block.begin(p), block.end(p));
       for (int q : {p - 1, p + 1, p - grid_.nx, p + grid_.nx}) {
-        intersect(eroded.data(), eroded.data() + eroded.size(), data + block_begin[q], data + block_begin[q + 1], scratch);
+        extra.assign(block.begin(q), block.end(q));
+        outline_in_neighbour(solid.begin(p), solid.end(p), solid.begin(q), solid.end(q), extra);
+        std::sort(extra.begin(), extra.end());
+        covered.clear();
+        for (const Range& x : extra) append_merged(covered, x.first, x.second);
+        intersect(eroded.data(), eroded.data() + eroded.size(), covered.data(), covered.data() + covered.size(), scratch);
         eroded.swap(scratch);
         if (eroded.empty()) break;
       }

@@ -20,10 +20,12 @@
 //   - a cell is a column at j when it has a contact at j (j >= 1: a contact in the first layer
 //     alone builds nothing, PrusaSlicer takes it out of the first layer), or was one at j + 1 and the projection
 //     passes: some pixel of it is free of the part in object layers j and j + 1, or lies on the
-//     part's outline there (a neighbour free). The slicer fills its grid cells up to the part eroded
-//     by one of its pixels and keeps any sliver of a cell the part leaves free, so a column whose
-//     cell the part's side all but covers goes on down, and fills the cell again where the part
-//     recedes below; only a cell the part covers beyond its outline stops it;
+//     part's outline there (a neighbour free) with the outline in its own half. The slicer fills
+//     its grid cells up to the part and keeps any sliver of a cell the part leaves free, so a
+//     column whose cell the part's side all but covers goes on down, and fills the cell again where
+//     the part recedes below; a cell the part covers beyond its outline stops it, and so does one
+//     whose outline has moved past the midpoint into the neighbour (where the neighbour's span
+//     starts above, or ends below, the pixel's: the outline runs between their centres);
 //   - a column's area at j: its pixels free of the part in object layers j - g .. j + g (g the
 //     layers within contact_distance), less xy_gap along the part's outline there;
 //   - support layers: PrusaSlicer splits each gap between contact layers into equal layers of at
@@ -124,8 +126,14 @@ class GridSupportSweep {
  private:
   void pixel_events(const SupportRaster& raster, std::vector<RawEvent>& raw, std::vector<int>& trim_begin,
                     std::vector<std::pair<int, int>>& trims, std::vector<char>& has_contact);
-  void block_events(const std::vector<int>& block_begin, const std::vector<std::pair<int, int>>& blocks,
-                    std::vector<RawEvent>& raw) const;
+  struct PixelRanges {  // per pixel, sorted layer ranges [first, second]: offsets and the ranges
+    const std::vector<int>& offset;
+    const std::vector<std::pair<int, int>>& ranges;
+    bool empty(int p) const { return offset[p] == offset[p + 1]; }
+    const std::pair<int, int>* begin(int p) const { return ranges.data() + offset[p]; }
+    const std::pair<int, int>* end(int p) const { return ranges.data() + offset[p + 1]; }
+  };
+  void block_events(const PixelRanges& block, const PixelRanges& solid, std::vector<RawEvent>& raw) const;
   void outline_events(const std::vector<int>& trim_begin, const std::vector<std::pair<int, int>>& trims,
                       std::vector<RawEvent>& raw) const;
   double first_layer(const std::vector<int>& columns, const std::vector<int>& interface_cells, int cells_x, int offset_x,

@@ -173,18 +173,27 @@ TEST(SupportSweep, TheZigzagsLinksAlongAStepsAndANotchAreTheBruteForceSweeps) {
     }
 }
 
+// A raster by hand: n × n pixels of 0.5 mm, the part's spans at pixel (i, j) from spans_at(i, j)
+// (a list of SolidSpan, sorted upwards), no overhangs yet.
+template <class SpansAt>
+SupportRaster raster_by_hand(int n, const SpansAt& spans_at) {
+  SupportRaster r;
+  r.grid.pixel = 0.5;
+  r.grid.nx = r.grid.ny = n;
+  r.span_begin.push_back(0);
+  for (int p = 0; p < r.grid.count(); ++p) {
+    for (const SolidSpan& x : spans_at(p % n, p / n)) r.spans.push_back(x);
+    r.span_begin.push_back(static_cast<int>(r.spans.size()));
+  }
+  return r;
+}
+
 // A raster by hand: 3 × 3 cells of 4 pixels (0.5 mm), an overhang over the centre pixel (5, 5) at
 // z = 10, and a block of the part from z = 4 to 6 over pixels [lo, hi]² (nothing else).
 SupportRaster column_over_a_block(int lo, int hi) {
-  SupportRaster r;
-  r.grid.pixel = 0.5;
-  r.grid.nx = r.grid.ny = 12;
-  r.span_begin.push_back(0);
-  for (int p = 0; p < r.grid.count(); ++p) {
-    const int i = p % 12, j = p / 12;
-    if (lo <= i && i <= hi && lo <= j && j <= hi) r.spans.push_back({4.0, 6.0});
-    r.span_begin.push_back(static_cast<int>(r.spans.size()));
-  }
+  SupportRaster r = raster_by_hand(12, [&](int i, int j) {
+    return lo <= i && i <= hi && lo <= j && j <= hi ? std::vector<SolidSpan>{{4.0, 6.0}} : std::vector<SolidSpan>{};
+  });
   r.overhangs.push_back({5 + 12 * 5, 49, 49, false});
   return r;
 }
@@ -216,18 +225,57 @@ TEST(SupportSweep, AColumnGoesOnPastThePartsSideAndStopsInsideIt) {
 }
 
 
+// A raster by hand: 3 × 3 cells of 4 pixels (0.5 mm), an overhang over pixel (6, 5) at z = 10 and,
+// along every row, a bore's floor and walls under the centre cell (pixels 4..7): pixels 5 and 6
+// filled from the plate to z = 4, the cell's edge pixels 4 and 7 from z = 2 to 8, and pixels 3 and
+// 8 beside them (the next cells) from wall_bottom to 8, or never (walls straight up at the cell's
+// edges).
+SupportRaster column_in_a_bore(double wall_bottom) {
+  SupportRaster r = raster_by_hand(12, [&](int i, int) {
+    std::vector<SolidSpan> spans;
+    if (i == 5 || i == 6) spans.push_back({0.0, 4.0});
+    if (i == 4 || i == 7) spans.push_back({2.0, 8.0});
+    if ((i == 3 || i == 8) && wall_bottom < 8.0) spans.push_back({wall_bottom, 8.0});
+    return spans;
+  });
+  r.overhangs.push_back({6 + 12 * 5, 49, 49, false});
+  return r;
+}
+
+TEST(SupportSweep, AColumnInABoreLandsOnItsFloorWhereTheWallsOutlineHasLeftItsCell) {
+  SlicerLayers layers;
+  layers.count = 60;
+  const GridSweepSettings settings;
+  // Walls straight up: where the floor fills the rest of the cell, its edge pixels, filled, lie on
+  // the part's outline, so a sliver of the cell may be free beside a wall, and the column goes on
+  // down past the floor to the plate, as it goes past a part's side.
+  const SupportRaster straight = column_in_a_bore(8.0);
+  const GridSweepResult past = GridSupportSweep(straight, layers, settings).run(0, 0);
+  EXPECT_GT(past.first_layer, 0.0);
+  // The walls' outsides leaning out above z = 2 (pixels 3 and 8 filled from 4.2, the slice at 4.3
+  // on; the edge pixels from the slice at 2.1): from the slice at 3.3, halfway, their outlines lie
+  // past the midpoints between the edge pixels and those, in the next cells, so the cell has no
+  // free sliver between 3.3 and the floor's top, and the column lands on the floor.
+  const SupportRaster leaning = column_in_a_bore(4.2);
+  const GridSweepResult landed = GridSupportSweep(leaning, layers, settings).run(0, 0);
+  EXPECT_EQ(landed.first_layer, 0.0);
+  EXPECT_EQ(landed.layer[5], 0.0);
+  EXPECT_DOUBLE_EQ(landed.landing_area, 16 * 0.25);  // the floor's and the walls' tops: the whole cell
+  for (const SupportRaster* r : {&straight, &leaning}) {
+    const GridSweepResult got = GridSupportSweep(*r, layers, settings).run(0, 0);
+    const GridSweepResult want = test::reference_sweep(*r, layers, settings, 0, 0);
+    ASSERT_GT(want.total(), 0.0);
+    EXPECT_NEAR(got.total(), want.total(), 1e-9 * want.total());
+    EXPECT_NEAR(got.landing_area, want.landing_area, 1e-9 * (1.0 + want.landing_area));
+  }
+}
+
+
 // A raster by hand: 4 × 4 cells of 4 pixels (0.5 mm), the part filling pixel columns i < 8 from
 // the plate to z = 5, and overhangs standing on its top (layer 25, whose slice below lies at 4.9)
 // over the given pixels.
 SupportRaster overhangs_on_a_top(const std::vector<int>& pixels) {
-  SupportRaster r;
-  r.grid.pixel = 0.5;
-  r.grid.nx = r.grid.ny = 16;
-  r.span_begin.push_back(0);
-  for (int p = 0; p < r.grid.count(); ++p) {
-    if (p % 16 < 8) r.spans.push_back({0.0, 5.0});
-    r.span_begin.push_back(static_cast<int>(r.spans.size()));
-  }
+  SupportRaster r = raster_by_hand(16, [](int i, int) { return i < 8 ? std::vector<SolidSpan>{{0.0, 5.0}} : std::vector<SolidSpan>{}; });
   for (int p : pixels) r.overhangs.push_back({p, 25, 25, false});
   return r;
 }

@@ -65,7 +65,8 @@ bool reference_overlaps(const PixelGrid& g, int pixel, const Vec2& a, const Vec2
 namespace {
 
 // Per pixel and layer: filled by the part at the layer's slice, trimmed, blocked (filled here or
-// just above), stopping a column (blocked, and so are its four neighbours), a top, a contact.
+// just above), stopping a column (blocked, and so are its four neighbours, or the outline between
+// them lies in the neighbour's half), a top, a contact.
 struct Voxels {
   int n = 0, layers = 0;
   std::vector<char> solid, trim, block, stop, top, contact, dense;
@@ -89,13 +90,29 @@ Voxels voxels(const SupportRaster& r, const SlicerLayers& L, const GridSweepSett
       v.at(v.top, p, j) = v.at(v.solid, p, j) && !(j + 1 < L.count && v.at(v.solid, p, j + 1));
     }
   }
+  // Whether, at layer k, the part's outline between p (solid, in its run a0..a1) and its free
+  // neighbour q lies in q's half: it runs from q's centre at q's next solid layer above (below)
+  // to p's centre at a0 (a1), and is past the midpoint from halfway between them on.
+  auto outline_in = [&](int p, int q, int k) {
+    if (!v.at(v.solid, p, k) || v.at(v.solid, q, k)) return false;
+    int a0 = k, a1 = k;
+    while (a0 > 0 && v.at(v.solid, p, a0 - 1)) --a0;
+    while (a1 + 1 < L.count && v.at(v.solid, p, a1 + 1)) ++a1;
+    int up = k + 1, down = k - 1;
+    while (up <= a1 && !v.at(v.solid, q, up)) ++up;
+    while (down >= a0 && !v.at(v.solid, q, down)) --down;
+    return (up <= a1 && 2 * k >= a0 + up) || (down >= a0 && 2 * k <= a1 + down);
+  };
   const int nx = r.grid.nx, ny = r.grid.ny;
   for (int p = 0; p < v.n; ++p) {
     const int i = p % nx, row = p / nx;
     if (i == 0 || row == 0 || i + 1 == nx || row + 1 == ny) continue;  // beyond the raster is free
-    for (int j = 0; j < L.count; ++j)
-      v.at(v.stop, p, j) = v.at(v.block, p, j) && v.at(v.block, p - 1, j) && v.at(v.block, p + 1, j) &&
-                           v.at(v.block, p - nx, j) && v.at(v.block, p + nx, j);
+    for (int j = 0; j < L.count; ++j) {
+      bool stop = v.at(v.block, p, j);
+      for (int q : {p - 1, p + 1, p - nx, p + nx})
+        stop = stop && (v.at(v.block, q, j) || outline_in(p, q, j) || (j + 1 < L.count && outline_in(p, q, j + 1)));
+      v.at(v.stop, p, j) = stop;
+    }
   }
   auto contact_layer = [&](int k) {
     int j = -1;
