@@ -22,9 +22,9 @@
 //     than that (unless their connected region is a lip or fold too narrow to reach half as far),
 //     bottom creases whose tip moves out of the grown layer below (a keel's ridge, whatever its
 //     faces), and lowest points (a vertex below all its neighbours); each grown back by that
-//     reach into its layer's own strip over the steeper face below an overhang's edge. Each marks the grid cells it touches, even by a sliver on the part's
-//     outline, at the layer of its contact, contact_distance below it; nothing under the first
-//     layer (overhang_features.h).
+//     reach into its layer's own strip over the steeper face below an overhang's edge. Each marks
+//     the grid cells it touches, even by a sliver on the part's outline, at the layer of its
+//     contact, contact_distance below it; nothing under the first layer (overhang_features.h).
 //   - The grid: square cells of grid_spacing (the support lines' spacing) centred on the part's
 //     bounding box. A cell any overhang touches becomes a support column: the whole cell, minus the
 //     part and an xy_gap around it. The column goes down while some of the cell stays free of the

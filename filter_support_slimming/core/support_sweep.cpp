@@ -138,9 +138,9 @@ std::vector<double> support_layer_thickness(const std::vector<char>& has_contact
   return out;
 }
 
-// Per pixel, in object layers: what the part fills, what trims a support layer there (the part
-// within contact_distance above or below), what blocks the projection (filled at j or j + 1), the
-// part's top layers, and the contacts (the support layer under each overhang).
+// Per pixel, in object layers: what the part fills (handed to block_events, which finds what
+// stops a column), what trims a support layer there (the part within contact_distance above or
+// below), the part's top layers, and the contacts (the support layer under each overhang).
 void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<RawEvent>& raw, std::vector<int>& trim_begin,
                                     std::vector<std::pair<int, int>>& trims, std::vector<char>& has_contact) {
   const SlicerLayers& L = layers_;
@@ -150,20 +150,19 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
     const double top = L.bottom_z(k) - settings_.contact_distance + 1e-9;
     return top < L.first_height ? -1 : static_cast<int>(std::floor((top - L.first_height) / L.height));
   };
-  std::vector<Range> solid, trim, block, contact, dense;
+  std::vector<Range> solid, trim, contact, dense;
   size_t mark = 0;
   trim_begin.assign(static_cast<size_t>(n) + 1, 0);
-  std::vector<int> block_begin(static_cast<size_t>(n) + 1, 0), solid_begin(static_cast<size_t>(n) + 1, 0);
-  std::vector<Range> blocks, solids;
+  std::vector<int> solid_begin(static_cast<size_t>(n) + 1, 0);
+  std::vector<Range> solids;
   for (int p = 0; p < n; ++p) {
-    solid.clear(), trim.clear(), block.clear(), contact.clear(), dense.clear();
+    solid.clear(), trim.clear(), contact.clear(), dense.clear();
     trim_begin[p] = static_cast<int>(trims.size());
     for (int s = raster.span_begin[p]; s < raster.span_begin[p + 1]; ++s)
       append_merged(solid, L.first_slice_at_or_above(raster.spans[s].bottom),
                     std::min(count - 1, L.last_slice_at_or_below(raster.spans[s].top)));
     for (const Range& x : solid) {
       append_merged(trim, std::max(0, x.first - reach), std::min(count - 1, x.second + reach));
-      append_merged(block, std::max(0, x.first - 1), x.second);
       add_range(raw, p, {x.second, x.second}, kTop);
     }
     solid_first_[p] = covers(solid, 0);
@@ -181,8 +180,6 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
     }
     for (const Range& x : trim) add_range(raw, p, x, kTrim);
     trims.insert(trims.end(), trim.begin(), trim.end());
-    block_begin[p] = static_cast<int>(blocks.size());
-    blocks.insert(blocks.end(), block.begin(), block.end());
     solid_begin[p] = static_cast<int>(solids.size());
     solids.insert(solids.end(), solid.begin(), solid.end());
     for (const Range& x : contact) {
@@ -192,9 +189,8 @@ void GridSupportSweep::pixel_events(const SupportRaster& raster, std::vector<Raw
     for (const Range& x : dense) add_range(raw, p, x, kDense);
   }
   trim_begin[n] = static_cast<int>(trims.size());
-  block_begin[n] = static_cast<int>(blocks.size());
   solid_begin[n] = static_cast<int>(solids.size());
-  block_events({block_begin, blocks}, {solid_begin, solids}, raw);
+  block_events({solid_begin, solids}, raw);
 }
 
 namespace {
@@ -217,6 +213,11 @@ void outline_in_neighbour(const Range* p, const Range* p_end, const Range* q, co
     }
 }
 
+// What blocks the projection at pixel p from its solid runs: the layers j filled at j or j + 1.
+void blocked_layers(const Range* p, const Range* p_end, std::vector<Range>& out) {
+  for (; p != p_end; ++p) append_merged(out, std::max(0, p->first - 1), p->second);
+}
+
 }  // namespace
 
 // What stops a column: a pixel the part fills in both layers, and its four neighbours too, or
@@ -225,16 +226,18 @@ void outline_in_neighbour(const Range* p, const Range* p_end, const Range* q, co
 // any sliver free goes on down: where the part recedes below, it fills the cell again. A sliver
 // lies on p's side of the outline, so where the outline has left p's half, p blocks: a column
 // coming down inside a bore lands on its floor instead of slipping down the outside of its wall.
-void GridSupportSweep::block_events(const PixelRanges& block, const PixelRanges& solid, std::vector<RawEvent>& raw) const {
+void GridSupportSweep::block_events(const PixelRanges& solid, std::vector<RawEvent>& raw) const {
   std::vector<Range> eroded, scratch, covered, extra;
   for (int j = 0; j < grid_.ny; ++j) {
     for (int i = 0; i < grid_.nx; ++i) {
       const int p = i + grid_.nx * j;
-      if (block.empty(p)) continue;
+      if (solid.empty(p)) continue;
       if (i == 0 || j == 0 || i + 1 == grid_.nx || j + 1 == grid_.ny) continue;  // a neighbour off the raster is free
-      eroded.assign(block.begin(p), block.end(p));
+      eroded.clear();
+      blocked_layers(solid.begin(p), solid.end(p), eroded);
       for (int q : {p - 1, p + 1, p - grid_.nx, p + grid_.nx}) {
-        extra.assign(block.begin(q), block.end(q));
+        extra.clear();
+        blocked_layers(solid.begin(q), solid.end(q), extra);
         outline_in_neighbour(solid.begin(p), solid.end(p), solid.begin(q), solid.end(q), extra);
         std::sort(extra.begin(), extra.end());
         covered.clear();

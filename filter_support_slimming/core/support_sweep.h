@@ -133,7 +133,7 @@ class GridSupportSweep {
     const std::pair<int, int>* begin(int p) const { return ranges.data() + offset[p]; }
     const std::pair<int, int>* end(int p) const { return ranges.data() + offset[p + 1]; }
   };
-  void block_events(const PixelRanges& block, const PixelRanges& solid, std::vector<RawEvent>& raw) const;
+  void block_events(const PixelRanges& solid, std::vector<RawEvent>& raw) const;
   void outline_events(const std::vector<int>& trim_begin, const std::vector<std::pair<int, int>>& trims,
                       std::vector<RawEvent>& raw) const;
   double first_layer(const std::vector<int>& columns, const std::vector<int>& interface_cells, int cells_x, int offset_x,
