@@ -58,6 +58,54 @@ TEST(OverhangFeatures, AnOverhangsEdgeReachesOverTheSteeperFaceBelowInItsOwnLaye
   EXPECT_FALSE(layers_in_column(8.52, 20).empty());
 }
 
+// A tunnel whose ceiling is the tunnel() above turned over: walls to z = 6, a 35-degree overhang up
+// to the edge at x = -e, then a 50-degree face (steeper than the threshold) up to the apex, so the
+// steeper face lies above the edge. Sheared by z += 0.1 (y + 5), so the edge rises from z = 8.1 at
+// y = -5 to 9.1 at y = 5 and the region's top is far from the layers looked at.
+Surface rising_ceiling() {
+  const double z_edge = 8.1, e = 5.0 - (z_edge - 6.0) / std::tan(35.0 * kDeg), apex = z_edge + e * std::tan(50.0 * kDeg);
+  Surface s = test::prism_xz({{-10, 0}, {-5, 0}, {-5, 6}, {-e, z_edge}, {0, apex}, {e, z_edge}, {5, 6}, {5, 0}, {10, 0}, {10, 16}, {-10, 16}},
+                             -5.0, 5.0);
+  s.V.col(2) += 0.1 * (s.V.col(1).array() + 5.0).matrix();
+  return s;
+}
+
+// The layers marked over pixel (i, j) of 0.25 mm pixels whose column 20 begins 0.06 mm beyond the
+// rising ceiling's edge (x = -e + 0.06, towards the apex) and whose row j spans y from
+// -6 + 0.25 j: there the edge lies at z = 8.5 + 0.1 (-6 + 0.25 j + 1) to 0.025 mm higher.
+std::set<int> layers_over_ceiling(int i, int j) {
+  const Surface s = rising_ceiling();
+  const double e = 5.0 - (8.1 - 6.0) / std::tan(35.0 * kDeg);
+  PixelGrid g;
+  g.pixel = 0.25;
+  g.x0 = -e + 0.06 - 20 * g.pixel;
+  g.y0 = -6.0;
+  g.nx = g.ny = 96;
+  std::set<int> layers;
+  for (const PixelOverhang& o : overhang_features(s, FaceAdjacency(s), g, OverhangRule{}))
+    if (o.pixel == i + g.nx * j)
+      for (int k = o.layer_low; k <= o.layer_high; ++k) layers.insert(k);
+  return layers;
+}
+
+TEST(OverhangFeatures, AStripOntoASteeperFaceAboveTheEdgeHoldsOnlyWhatLiesPastTheMarginOfTheSliceBelow) {
+  // Layer 43 spans the slices at 8.5 and 8.7. With the edge u = z_e - 8.5 above the lower one,
+  // that slice crosses the 35-degree face u / tan 35.26 = 1.414 u back from the edge (35.26 degrees
+  // is the sheared face's slope), and a point of the 50-degree face d beyond the edge is 1.414 u + d
+  // from it: contact past the margin 0.2 / tan 46 = 0.193 mm. The face reaches (0.2 - u) / tan 50
+  // beyond the edge within the layer.
+  // Row 20, u from 0 to 0.025: past the margin needs d > 0.158, the face reaches 0.168 at most, and
+  // less where u is larger (0.147 at 0.025): no contact beyond the edge in any layer. (Marking the
+  // steeper face within the margin of the edge, without the cut, put layers 43 and 44 there.)
+  EXPECT_TRUE(layers_over_ceiling(20, 20).empty());
+  // Row 23, u from 0.075 to 0.1: past the margin from d = 0.087 (0.052), the face reaches 0.105
+  // (0.084): contact beyond column 20's side at 0.06 mm, in layer 43 alone.
+  EXPECT_EQ(layers_over_ceiling(20, 23), std::set<int>{43});
+  // The overhanging face's own pixels, before the edge, carry contact in both rows.
+  EXPECT_FALSE(layers_over_ceiling(19, 20).empty());
+  EXPECT_FALSE(layers_over_ceiling(19, 23).empty());
+}
+
 // The highest object layer any feature of a foot (test::flared_foot) shows in.
 int highest_layer_of_foot(const std::vector<Eigen::Vector2d>& flare) {
   const Surface s = test::flared_foot(flare);
