@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "core/face_adjacency.h"
@@ -104,6 +105,58 @@ TEST(OverhangFeatures, AStripOntoASteeperFaceAboveTheEdgeHoldsOnlyWhatLiesPastTh
   // The overhanging face's own pixels, before the edge, carry contact in both rows.
   EXPECT_FALSE(layers_over_ceiling(19, 20).empty());
   EXPECT_FALSE(layers_over_ceiling(19, 23).empty());
+}
+
+// The underside of a flat keel: two 20-degree faces meeting in a ridge that rises at 2 degrees from
+// its lower end P0 = (0, 0, 8.45), 4 mm along x, 3 mm to each side. With wall_below, a vertical
+// face hangs from P0 (the surface goes on down from the ridge's lower end).
+Surface flat_keel(bool wall_below) {
+  const double t2 = std::tan(2.0 * kDeg), t20 = std::tan(20.0 * kDeg), z0 = 8.45;
+  Surface s;
+  s.V.resize(wall_below ? 8 : 6, 3);
+  s.V.topRows(6) << 0, 0, z0, 4, 0, z0 + 4 * t2, 0, -3, z0 + 3 * t20, 4, -3, z0 + 4 * t2 + 3 * t20, 0, 3, z0 + 3 * t20, 4, 3,
+      z0 + 4 * t2 + 3 * t20;
+  s.F.resize(wall_below ? 5 : 4, 3);
+  s.F.topRows(4) << 0, 3, 2, 0, 1, 3, 0, 5, 1, 0, 4, 5;  // looking down, the ridge 0-1 shared
+  if (wall_below) {
+    s.V.bottomRows(2) << 0, -1, z0 - 3, 0, 1, z0 - 3;
+    s.F.bottomRows(1) << 0, 6, 7;
+  }
+  return s;
+}
+
+// The (pixel, layer) pairs overhang_features() marks on the flat keel, with or without creases.
+std::set<std::pair<int, int>> keel_marks(bool wall_below, bool creases) {
+  const Surface s = flat_keel(wall_below);
+  PixelGrid g;
+  g.pixel = 0.25;
+  g.x0 = -2.0;
+  g.y0 = -4.0;
+  g.nx = 32;
+  g.ny = 32;
+  OverhangRule rule;
+  rule.creases = creases;
+  rule.tips = false;
+  std::set<std::pair<int, int>> marks;
+  for (const PixelOverhang& o : overhang_features(s, FaceAdjacency(s), g, rule))
+    for (int k = o.layer_low; k <= o.layer_high; ++k) marks.insert({o.pixel, k});
+  return marks;
+}
+
+TEST(OverhangFeatures, ARidgeBetweenOverhangingFacesShowsOnItsOwnOnlyWhereItBottomsOutWithNothingBelow) {
+  // The ridge's lowest layer (42, between the slices at 8.3 and 8.5) holds 0.05 mm of it: the faces
+  // reach 0.05 / tan 20.1 = 0.137 mm there, short of the margin (0.193), and are left out of it;
+  // along the ridge its tip reaches 0.05 / tan 2 = 1.43 mm.
+  // In open space that first slice is an island with nothing below: the ridge marks it.
+  const std::set<std::pair<int, int>> open_faces = keel_marks(false, false), open_all = keel_marks(false, true);
+  EXPECT_EQ(open_faces.count({8 + 16 * 32, 42}), 0u);  // pixel (8, 16) at x = 0..0.25, y = 0..0.25
+  EXPECT_EQ(open_all.count({8 + 16 * 32, 42}), 1u);
+  EXPECT_EQ(open_all.count({12 + 16 * 32, 42}), 1u);  // x = 1..1.25 along the ridge
+  EXPECT_TRUE(std::includes(open_all.begin(), open_all.end(), open_faces.begin(), open_faces.end()));
+  // With a wall below P0 the slice under layer 42 holds the wall's top at P0, and the faces' reach
+  // from it decides: the ridge adds nothing to its faces.
+  EXPECT_FALSE(keel_marks(true, false).empty());
+  EXPECT_EQ(keel_marks(true, true), keel_marks(true, false));
 }
 
 // The highest object layer any feature of a foot (test::flared_foot) shows in.
