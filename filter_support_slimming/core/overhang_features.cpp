@@ -202,6 +202,13 @@ Clipped clip_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const std::ar
   return poly;
 }
 
+// A clipped convex polygon marked as the fan of triangles from its first corner (nothing when fewer
+// than 3 corners are left).
+void mark_polygon(const LayerVoxels& voxels, const Clipped& part, bool dense, std::vector<PixelOverhang>& out) {
+  for (int i = 1; i + 1 < part.n; ++i)
+    mark_feature(voxels, part.p[0], part.p[static_cast<size_t>(i)], part.p[static_cast<size_t>(i + 1)], dense, out);
+}
+
 // The triangle a, b, c (or the segment a-b as a, b, b) marked between the heights shown.
 void mark_feature_between(const LayerVoxels& voxels, const Vec3& a, const Vec3& b, const Vec3& c, const ShownHeights& shown,
                           bool dense, std::vector<PixelOverhang>& out) {
@@ -209,8 +216,7 @@ void mark_feature_between(const LayerVoxels& voxels, const Vec3& a, const Vec3& 
     return mark_feature(voxels, a, b, c, dense, out);
   const std::pair<Vec3, double> below{Vec3(0, 0, 1), shown.high}, above{Vec3(0, 0, -1), -shown.low};
   const Clipped part = clip_triangle(a, b, c, {below, above, above});
-  for (int i = 1; i + 1 < part.n; ++i)
-    mark_feature(voxels, part.p[0], part.p[static_cast<size_t>(i)], part.p[static_cast<size_t>(i + 1)], dense, out);
+  mark_polygon(voxels, part, dense, out);
   if (part.n == 2) mark_feature(voxels, part.p[0], part.p[1], part.p[1], dense, out);
 }
 
@@ -310,14 +316,10 @@ void mark_strip_across(const Surface& s, int g, const Vec3& a, const Vec3& b, do
   const double z_high = std::min(shown.high, voxels.slice_above(std::max(a.z(), b.z())) - 1e-6);
   const Clipped strip = clip_triangle(p, q, r, {{{Vec3(0, 0, -1), -z_low}, {Vec3(0, 0, 1), z_high},
                                                   {Vec3(away.x(), away.y(), 0), away.dot(a.head<2>()) + reach}}});
-  auto mark = [&](const Clipped& part) {
-    for (int i = 1; i + 1 < part.n; ++i)
-      mark_feature(voxels, part.p[0], part.p[static_cast<size_t>(i)], part.p[static_cast<size_t>(i + 1)], dense, out);
-  };
   const Vec2 along = e / e.norm();
   const double edge_rise = (b.z() - a.z()) / e.norm();  // the edge's height per mm along it
   const bool above = centre.z() > a.z() + edge_rise * along.dot((centre - a).head<2>());
-  if (!above || !std::isfinite(run_f)) return mark(strip);
+  if (!above || !std::isfinite(run_f)) return mark_polygon(voxels, strip, dense, out);
   // Layer by layer: the part of the strip in layer k where (z_e - slice_z(k - 1)) run_f + the
   // distance beyond the edge passes the reach, a half-plane w.xy <= d since z_e is linear along it.
   const SlicePlanes& planes = voxels.planes;
@@ -325,8 +327,10 @@ void mark_strip_across(const Surface& s, int g, const Vec3& a, const Vec3& b, do
   for (double k = planes.layer_of(z_low); planes.slice_z(k - 1) < z_high; k += 1) {
     const double below = planes.slice_z(k - 1), d = w.dot(a.head<2>()) + run_f * (a.z() - below) - reach;
     for (int i = 1; i + 1 < strip.n; ++i)
-      mark(clip_triangle(strip.p[0], strip.p[static_cast<size_t>(i)], strip.p[static_cast<size_t>(i + 1)],
-                         {{{Vec3(0, 0, -1), -(below + 1e-6)}, {Vec3(0, 0, 1), planes.slice_z(k) - 1e-6}, {Vec3(w.x(), w.y(), 0), d}}}));
+      mark_polygon(voxels,
+                   clip_triangle(strip.p[0], strip.p[static_cast<size_t>(i)], strip.p[static_cast<size_t>(i + 1)],
+                                 {{{Vec3(0, 0, -1), -(below + 1e-6)}, {Vec3(0, 0, 1), planes.slice_z(k) - 1e-6}, {Vec3(w.x(), w.y(), 0), d}}}),
+                   dense, out);
   }
 }
 

@@ -17,6 +17,14 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
+// The (pixel, layer) pairs overhang_features() marks on s over the grid g.
+std::set<std::pair<int, int>> marks(const Surface& s, const PixelGrid& g, const OverhangRule& rule = {}) {
+  std::set<std::pair<int, int>> out;
+  for (const PixelOverhang& o : overhang_features(s, FaceAdjacency(s), g, rule))
+    for (int k = o.layer_low; k <= o.layer_high; ++k) out.insert({o.pixel, k});
+  return out;
+}
+
 // A tunnel 10 mm wide through a block (along y, 10 mm long), standing on the plate: walls up to
 // z = 6, then a 50-degree face (steeper than the 46-degree threshold) up to the edge at x = -e,
 // z = z_edge, then a 35-degree face (an overhang) to the apex on x = 0; mirrored at x > 0.
@@ -37,9 +45,8 @@ std::set<int> layers_in_column(double z_edge, int i) {
   g.y0 = -6.0;
   g.nx = g.ny = 96;
   std::set<int> layers;
-  for (const PixelOverhang& o : overhang_features(s, FaceAdjacency(s), g, OverhangRule{}))
-    if (o.pixel % g.nx == i)
-      for (int k = o.layer_low; k <= o.layer_high; ++k) layers.insert(k);
+  for (const auto& [pixel, k] : marks(s, g))
+    if (pixel % g.nx == i) layers.insert(k);
   return layers;
 }
 
@@ -83,9 +90,8 @@ std::set<int> layers_over_ceiling(int i, int j) {
   g.y0 = -6.0;
   g.nx = g.ny = 96;
   std::set<int> layers;
-  for (const PixelOverhang& o : overhang_features(s, FaceAdjacency(s), g, OverhangRule{}))
-    if (o.pixel == i + g.nx * j)
-      for (int k = o.layer_low; k <= o.layer_high; ++k) layers.insert(k);
+  for (const auto& [pixel, k] : marks(s, g))
+    if (pixel == i + g.nx * j) layers.insert(k);
   return layers;
 }
 
@@ -137,10 +143,7 @@ std::set<std::pair<int, int>> keel_marks(bool wall_below, bool creases) {
   OverhangRule rule;
   rule.creases = creases;
   rule.tips = false;
-  std::set<std::pair<int, int>> marks;
-  for (const PixelOverhang& o : overhang_features(s, FaceAdjacency(s), g, rule))
-    for (int k = o.layer_low; k <= o.layer_high; ++k) marks.insert({o.pixel, k});
-  return marks;
+  return marks(s, g, rule);
 }
 
 TEST(OverhangFeatures, ARidgeBetweenOverhangingFacesShowsOnItsOwnOnlyWhereItBottomsOutWithNothingBelow) {
