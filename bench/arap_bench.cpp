@@ -20,8 +20,8 @@
 #include <random>
 #include <vector>
 
-#include "core/arap.h"
-#include "core/polar.h"
+#include "core/rotation/polar.h"
+#include "core/solver/arap.h"
 #include "support/tet_grid.h"
 
 using namespace slim;

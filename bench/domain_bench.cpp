@@ -9,8 +9,8 @@
 #include <fstream>
 #include <string>
 
-#include "core/embedding.h"
-#include "core/voxel_domain.h"
+#include "core/domain/embedding.h"
+#include "core/domain/voxel_domain.h"
 #include "support/shapes.h"
 
 namespace {

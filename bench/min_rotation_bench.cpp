@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-#include "core/min_rotation.h"
+#include "core/rotation/min_rotation.h"
 #include "support/min_rotation_reference.h"
 
 namespace {

@@ -8,7 +8,7 @@
 // Run: build/bench/orientation_bench  (medians of 5 repetitions are printed).
 #include <benchmark/benchmark.h>
 
-#include "core/orientation.h"
+#include "core/orientation/orientation.h"
 #include "support/shapes.h"
 
 namespace {

@@ -79,7 +79,7 @@ run_one() {  # NAME METHOD BUDGET
   "$eval_tool" measure "$dir/result.ply" --angle 45 --reference "$in_dir/input.ply" --stl "$dir/result.stl" >"$dir/measure.txt"
   slice_both "$dir/result.stl" "$dir"
   # MeshLab's Hausdorff filter, or where it fails (its uniform grid asserts on some inputs) the
-  # core's exact point-to-triangle distance from the report (core/surface_distance.h).
+  # core's exact point-to-triangle distance from the report (core/geometry/surface_distance.h).
   if ! "$repo/tools/hausdorff.sh" "$in_dir/input.ply" "$dir/result.ply" --diag "$(kv "$in_dir/input.txt" diag)" --out "$dir" \
     --build "$build" >"$dir/hausdorff.txt" 2>"$dir/hausdorff.err"; then
     local core_h

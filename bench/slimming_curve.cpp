@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/slimming.h"
+#include "core/optimizer/slimming.h"
 #include "support/shapes.h"
 
 using namespace slim;

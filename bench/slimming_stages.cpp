@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "core/arap.h"
-#include "core/slimming.h"
-#include "core/voxel_domain.h"
+#include "core/domain/voxel_domain.h"
+#include "core/optimizer/slimming.h"
+#include "core/solver/arap.h"
 #include "support/shapes.h"
 
 using namespace slim;

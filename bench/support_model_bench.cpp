@@ -1,4 +1,4 @@
-// Time and memory of one support estimate (slim::estimate_support, core/support_model.h).
+// Time and memory of one support estimate (slim::estimate_support, core/support_model/support_model.h).
 //   Bunny/L:        the sample bunny at a 60 mm longest side (as it is printed), refined L times
 //                   (each level 4x the faces: 3,674 at L = 0, 940,544 at L = 4); one thread.
 //   Bunny2Threads/L: the same on two threads (the grid phases run in parallel).
@@ -12,7 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "core/support_model.h"
+#include "core/support_model/support_model.h"
 #include "support/shapes.h"
 
 namespace {

@@ -21,9 +21,9 @@
 
 #include <Eigen/Geometry>
 
-#include "core/support_model.h"
+#include "core/support_model/support_model.h"
 #include "gcode_extrusion.h"
-#include "vcg_adapters/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 
 namespace {
 
@@ -49,7 +49,7 @@ int estimate(int argc, char** argv) {
     else if (k == "--slice-gap") o.slice_max_gap = std::atof(v);
     else throw std::invalid_argument("unknown option " + k);
   }
-  const slim::Surface surface = slim::vcgx::load_surface(argv[2]);
+  const slim::Surface surface = slim::io::load_surface(argv[2]);
   const slim::SupportEstimate e = slim::estimate_support(surface, o);
   const slim::EdgeTopology edges = slim::edge_topology(surface);
   std::printf("open_edges=%lld\nnonmanifold_edges=%lld\n", static_cast<long long>(edges.open_edges),
@@ -67,12 +67,12 @@ int estimate(int argc, char** argv) {
 }
 
 int turn(char** argv) {
-  slim::Surface s = slim::vcgx::load_surface(argv[2]);
+  slim::Surface s = slim::io::load_surface(argv[2]);
   const Eigen::Matrix3d r = Eigen::AngleAxisd(std::atof(argv[3]) * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const Eigen::RowVector3d centre = 0.5 * (s.V.colwise().minCoeff() + s.V.colwise().maxCoeff());
   s.V = (s.V.rowwise() - centre) * r.transpose();
   s.V.col(2).array() -= s.V.col(2).minCoeff();
-  slim::vcgx::save_surface(argv[4], s);
+  slim::io::save_surface(argv[4], s);
   return 0;
 }
 

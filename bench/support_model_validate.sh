@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The support model (core/support_model.h) against the judge: PrusaSlicer and CuraEngine.
+# The support model (core/support_model/support_model.h) against the judge: PrusaSlicer and CuraEngine.
 #
 #   bench/support_model_validate.sh [options] [NAME=MESH ...]
 #

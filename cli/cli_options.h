@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "core/orientation.h"
-#include "core/slimming.h"
+#include "core/optimizer/slimming.h"
+#include "core/orientation/orientation.h"
 
 namespace slim::cli {
 

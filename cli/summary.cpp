@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/resolution_ladder.h"
+#include "core/optimizer/resolution_ladder.h"
 
 namespace slim::cli {
 
@@ -33,9 +33,9 @@ std::string wrapped(const std::string& text, size_t indent) {
 
 // What was read and how it is written back: the file's own lists (indexed formats), or the
 // vertices STL's separate corners were welded into.
-void print_mesh_line(const vcgx::MeshFile& file, const WeldedView& view) {
+void print_mesh_line(const io::MeshFile& file, const WeldedView& view) {
   const long long nv = file.surface.V.rows(), nf = file.surface.F.rows();
-  if (file.format == vcgx::MeshFormat::Stl) {
+  if (file.format == io::MeshFormat::Stl) {
     std::printf("  mesh            %lld triangles; STL stores each corner apart: %lld corners welded into %lld vertices\n", nf,
                 static_cast<long long>(file.stl_corners), nv);
   } else {

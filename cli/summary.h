@@ -4,7 +4,7 @@
 //   write_report(path, run);     // every figure of the summary as one flat JSON object
 //
 // In (RunReport): the files' names, the mesh as read and its welded view, the job (orientation
-// and slimming, core/oriented_slimming.h) and its figures (core/slimming_figures.h: support
+// and slimming, core/orientation/oriented_slimming.h) and its figures (core/optimizer/slimming_figures.h: support
 // estimate, shape cost, budget; mm, mm², mm³, %). Out: text. write_report throws
 // std::runtime_error naming the file when it cannot be written. The keys are listed in
 // docs/usage.md; a key's meaning never changes, new ones may be added.
@@ -12,17 +12,17 @@
 
 #include <string>
 
-#include "core/oriented_slimming.h"
-#include "core/slimming_figures.h"
-#include "core/welded_view.h"
-#include "vcg_adapters/mesh_io.h"
+#include "core/geometry/welded_view.h"
+#include "core/optimizer/slimming_figures.h"
+#include "core/orientation/oriented_slimming.h"
+#include "mesh_io/mesh_io.h"
 
 namespace slim::cli {
 
 struct RunReport {
   std::string in, out;
   bool oriented = false;
-  const vcgx::MeshFile* file = nullptr;
+  const io::MeshFile* file = nullptr;
   const WeldedView* view = nullptr;
   const OrientedSlimming* job = nullptr;
   SlimmingFigures figures;

@@ -8,11 +8,11 @@
 #include <unistd.h>
 
 #include "cli_options.h"
-#include "core/oriented_slimming.h"
-#include "core/slimming_figures.h"
-#include "core/welded_view.h"
+#include "core/geometry/welded_view.h"
+#include "core/optimizer/slimming_figures.h"
+#include "core/orientation/oriented_slimming.h"
+#include "mesh_io/mesh_io.h"
 #include "summary.h"
-#include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
 
@@ -26,7 +26,7 @@ bool print_progress(double fraction, const std::string& message) {
 
 // Orientation first (--orient): the part turns rigidly into its print pose and is slimmed there,
 // so the slimming's displacement and volume figures count the deformation alone.
-OrientedSlimming run_job(const cli::CliOptions& c, const vcgx::MeshFile& file, const WeldedView& view) {
+OrientedSlimming run_job(const cli::CliOptions& c, const io::MeshFile& file, const WeldedView& view) {
   OrientedSlimming job;
   if (!c.orient) {
     job.slimming = slim_supports(view.surface, c.slimming);
@@ -37,7 +37,7 @@ OrientedSlimming run_job(const cli::CliOptions& c, const vcgx::MeshFile& file, c
   job = slim_in_best_pose(view.surface, c.slimming, with_effort(c.effort));
   if (!c.oriented_out.empty()) {
     const OverhangReport pose = print_pose_overhang(job.posed, job.orientation, c.slimming.alpha_max_deg);
-    vcgx::write_mesh(c.oriented_out, file, view.positions_to_input(file.surface.V, job.posed.V), {pose.quality, pose.risky});
+    io::write_mesh(c.oriented_out, file, view.positions_to_input(file.surface.V, job.posed.V), {pose.quality, pose.risky});
   }
   return job;
 }
@@ -58,9 +58,9 @@ void check_report_folder(const std::string& report) {
 int main(int argc, char** argv) {
   cli::CliOptions c = cli::parse_arguments(std::vector<std::string>(argv + 1, argv + argc));
   check_report_folder(c.report);
-  WeldedView view;  // the surface the core computes on (core/welded_view.h)
+  WeldedView view;  // the surface the core computes on (core/geometry/welded_view.h)
   try {
-    const vcgx::MeshFile file = vcgx::read_mesh(c.in);
+    const io::MeshFile file = io::read_mesh(c.in);
     view = weld_coincident(file.surface);
     if (!c.features_file.empty()) c.slimming.rigid_features = cli::read_face_ids(c.features_file, view.surface.F.rows());
     if (c.features_from_mesh) {
@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
     const OrientedSlimming job = run_job(c, file, view);
     const SlimmingResult& r = job.slimming;
     // The files get the input's own vertex list back, moved as the welded view moved.
-    vcgx::write_mesh(c.out, file, view.positions_to_input(file.surface.V, r.surface.V), {r.after.quality, r.after.risky});
+    io::write_mesh(c.out, file, view.positions_to_input(file.surface.V, r.surface.V), {r.after.quality, r.after.risky});
     cli::RunReport run{c.in, c.out, c.orient, &file, &view, &job, {}};
     run.figures = slimming_figures(job.posed, r, bbox_diagonal(view.surface));
     cli::print_summary(run);

@@ -121,9 +121,9 @@ MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& s
     }
     output->updateDataMask(MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR |
                            (vertex_quality ? int(MeshModel::MM_VERTQUALITY) : 0));
-    slim::vcgx::write_positions(output->cm, V);
-    slim::vcgx::write_face_results(output->cm, face_quality, true, &risky);
-    if (vertex_quality) slim::vcgx::write_vertex_quality(output->cm, *vertex_quality);
+    slim::vcg_adapters::write_positions(output->cm, V);
+    slim::vcg_adapters::write_face_results(output->cm, face_quality, true, &risky);
+    if (vertex_quality) slim::vcg_adapters::write_vertex_quality(output->cm, *vertex_quality);
   } catch (...) {
     meshlab_api::delete_layer(md, output);
     md.setCurrentMesh(input.id());

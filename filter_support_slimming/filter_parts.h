@@ -12,10 +12,10 @@
 
 #include <QString>
 
-#include "core/orientation.h"
-#include "core/overhang.h"
-#include "core/slimming.h"
-#include "core/welded_view.h"
+#include "core/geometry/welded_view.h"
+#include "core/optimizer/slimming.h"
+#include "core/orientation/orientation.h"
+#include "core/print/overhang.h"
 #include "filters.h"
 #include "vcg_adapters/surface_adapter.h"
 
@@ -46,14 +46,14 @@ slim::SlimmingOptions slimming_options(const RichParameterList& par);
 MeshModel& current_triangle_mesh(MeshDocument& md);
 
 // The layer as the core sees it: its live vertices and faces in container order, coincident
-// vertices merged (core/welded_view.h), so that faces meeting at a seam share their vertex.
+// vertices merged (core/geometry/welded_view.h), so that faces meeting at a seam share their vertex.
 // Results come back to every vertex of the layer, whose list and order never change.
 struct LayerView {
   MeshModel& model;       // md's current layer, a triangle mesh (current_triangle_mesh)
   slim::Surface surface;  // the layer's own vertex and face lists
   slim::WeldedView view;
   explicit LayerView(MeshDocument& md)
-      : model(current_triangle_mesh(md)), surface(slim::vcgx::to_surface(model.cm)), view(slim::weld_coincident(surface)) {}
+      : model(current_triangle_mesh(md)), surface(slim::vcg_adapters::to_surface(model.cm)), view(slim::weld_coincident(surface)) {}
   // Runs `compute` on the merged surface; a refusal that names a vertex says which numbering it uses.
   template <class Compute>
   auto run(Compute&& compute) const {

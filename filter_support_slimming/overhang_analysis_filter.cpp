@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/oriented_slimming.h"
-#include "core/slimming_figures.h"
+#include "core/optimizer/slimming_figures.h"
+#include "core/orientation/oriented_slimming.h"
 
 namespace slim::plugin {
 
@@ -42,7 +42,7 @@ void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, Fil
   const bool colorize = par.getBool("colorize");
   const bool select = par.getBool("selectRisky");
   mm.updateDataMask(MeshModel::MM_FACEQUALITY | (colorize ? int(MeshModel::MM_FACECOLOR) : 0));
-  slim::vcgx::write_face_results(mm.cm, report.quality, colorize, select ? &report.risky : nullptr);
+  slim::vcg_adapters::write_face_results(mm.cm, report.quality, colorize, select ? &report.risky : nullptr);
 
   run.info(QString::asprintf(
       "Overhang Analysis: %lld risky faces of %d; risky area %.6g mm^2 (%.2f%% of %.6g mm^2); "

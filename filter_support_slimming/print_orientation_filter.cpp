@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/oriented_slimming.h"
-#include "core/slimming_figures.h"
+#include "core/optimizer/slimming_figures.h"
+#include "core/orientation/oriented_slimming.h"
 
 namespace slim::plugin {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/oriented_slimming.h"
-#include "core/resolution_ladder.h"
-#include "core/slimming_figures.h"
+#include "core/optimizer/resolution_ladder.h"
+#include "core/optimizer/slimming_figures.h"
+#include "core/orientation/oriented_slimming.h"
 
 namespace slim::plugin {
 
@@ -117,7 +117,7 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   MeshModel& input = layer.model;
   slim::SlimmingOptions options = slimming_options(par);
   if (par.getBool("preserveSelection")) {
-    options.rigid_features = slim::vcgx::selected_faces(input.cm);
+    options.rigid_features = slim::vcg_adapters::selected_faces(input.cm);
     if (std::none_of(options.rigid_features.begin(), options.rigid_features.end(), [](bool b) { return b; }))
       throw FilterFailure("'Preserve selection as rigid features' is on but no face is selected; "
                           "select the features to keep rigid, or turn the option off");

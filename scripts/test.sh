@@ -5,6 +5,6 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/setup.sh"
 "$here/scripts/build.sh"
 cd "$here/build"
-# One BLAS thread: the optimizer's statistics must repeat exactly (core/blas_threads.h says why).
+# One BLAS thread: the optimizer's statistics must repeat exactly (core/platform/blas_threads.h says why).
 export OPENBLAS_NUM_THREADS=1
 ctest --output-on-failure -j "$(nproc)" "$@"

@@ -122,7 +122,7 @@ mkdir -p "$out" || die "cannot create $out"
 out="$(cd "$out" && pwd)"
 home="$(mktemp -d)"; trap 'rm -rf "$home"' EXIT  # MeshLab's and f3d's settings: never the user's
 export HOME="$home" XDG_CONFIG_HOME="$home/.config"
-export OPENBLAS_NUM_THREADS=1  # the optimizer's statistics must repeat (core/blas_threads.h)
+export OPENBLAS_NUM_THREADS=1  # the optimizer's statistics must repeat (core/platform/blas_threads.h)
 started=$SECONDS
 
 # ---- 1. the part in the print frame ------------------------------------------------------------

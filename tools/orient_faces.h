@@ -3,7 +3,7 @@
 // mends them once, with VCG's OrientCoherentlyMesh.
 #pragma once
 
-#include "core/surface.h"
+#include "core/geometry/surface.h"
 
 namespace slim::eval {
 

@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "core/overhang.h"
+#include "core/print/overhang.h"
 
 namespace slim::eval {
 

@@ -3,7 +3,7 @@
 
 #include <Eigen/Core>
 
-#include "core/surface.h"
+#include "core/geometry/surface.h"
 
 namespace slim::eval {
 

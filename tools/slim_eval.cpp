@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "core/overhang.h"
-#include "core/shape_metrics.h"
+#include "core/geometry/shape_metrics.h"
+#include "core/print/overhang.h"
 #include "gcode_extrusion.h"
+#include "mesh_io/mesh_io.h"
 #include "orient_faces.h"
 #include "print_setup.h"
-#include "vcg_adapters/mesh_io.h"
 #include "vtk_writer.h"
 
 namespace {
@@ -116,7 +116,7 @@ int prepare(const Args& a) {
   if (size < 0) die("--size must not be negative");
   Eigen::Vector3d dir = Eigen::Vector3d::UnitZ();
   if (const std::string* d = a.get("--dir")) dir = Eigen::Vector3d(numbers("--dir", *d, 3).data());
-  slim::Surface in = slim::vcgx::load_surface(a.positional[0]);
+  slim::Surface in = slim::io::load_surface(a.positional[0]);
   if (in.F.rows() == 0) die(a.positional[0] + " has no faces");
   const std::string orient = a.get("--orient-faces") ? *a.get("--orient-faces") : "no";
   if (orient != "yes" && orient != "no") die("--orient-faces expects yes or no, got '" + orient + "'");
@@ -127,14 +127,14 @@ int prepare(const Args& a) {
     std::cout << "flipped_faces=" << o.flipped << "\ndropped_faces=" << o.dropped << "\n";
   }
   const slim::eval::PrintFrame frame = slim::eval::to_print_frame(in, dir, size);
-  slim::vcgx::save_surface(a.positional[1] + ".ply", frame.surface);
+  slim::io::save_surface(a.positional[1] + ".ply", frame.surface);
   std::cout << "scale=" << frame.scale << "\nsize=" << triple(frame.size) << "\ndiag=" << frame.size.norm()
             << "\nvertices=" << frame.surface.V.rows() << "\nfaces=" << frame.surface.F.rows() << "\n";
   return 0;
 }
 
 int measure(const Args& a) {
-  const slim::Surface s = slim::vcgx::load_surface(a.positional[0]);
+  const slim::Surface s = slim::io::load_surface(a.positional[0]);
   slim::OverhangOptions o;  // the part is in the print frame: +Z up
   if (a.get("--angle")) o.alpha_max_deg = number("--angle", *a.get("--angle"));
   o.plate_tolerance = a.get("--plate-tolerance") ? number("--plate-tolerance", *a.get("--plate-tolerance"))
@@ -146,7 +146,7 @@ int measure(const Args& a) {
             << "\nbbox_min=" << triple(s.V.colwise().minCoeff().transpose())
             << "\nbbox_max=" << triple(s.V.colwise().maxCoeff().transpose()) << "\n";
   if (const std::string* ref = a.get("--reference")) {
-    const slim::Surface r0 = slim::vcgx::load_surface(*ref);
+    const slim::Surface r0 = slim::io::load_surface(*ref);
     if (r0.V.rows() != s.V.rows())
       die(*ref + " has " + std::to_string(r0.V.rows()) + " vertices, " + a.positional[0] + " " +
           std::to_string(s.V.rows()) + ": not the same mesh");
@@ -160,11 +160,11 @@ int measure(const Args& a) {
   } else if (a.get("--displacement-vtk")) {
     die("--displacement-vtk needs --reference");
   }
-  if (const std::string* stl = a.get("--stl")) slim::vcgx::save_surface(*stl, s);
+  if (const std::string* stl = a.get("--stl")) slim::io::save_surface(*stl, s);
   if (const std::string* ply = a.get("--overhang-ply")) {
     Eigen::VectorXd two_colours(s.F.rows());  // -1: red on the ramp, +1: blue
     for (Eigen::Index f = 0; f < s.F.rows(); ++f) two_colours(f) = r.risky[static_cast<size_t>(f)] ? -1.0 : 0.6;
-    slim::vcgx::save_surface(*ply, s, {two_colours, {}});
+    slim::io::save_surface(*ply, s, {two_colours, {}});
   }
   return 0;
 }
@@ -203,13 +203,13 @@ int turn(const Args& a) {
   const double k_value = number("--quarter-turns", *k_text);
   if (k_value != std::floor(k_value)) die("--quarter-turns expects a whole number, got '" + *k_text + "'");
   const int k = ((static_cast<int>(k_value) % 4) + 4) % 4;
-  slim::Surface s = slim::vcgx::load_surface(a.positional[0]);
+  slim::Surface s = slim::io::load_surface(a.positional[0]);
   for (int i = 0; i < k; ++i) {  // (x, y) -> (-y, x): a quarter turn counter-clockwise seen from +Z
     const Eigen::VectorXd x = s.V.col(0);
     s.V.col(0) = -s.V.col(1);
     s.V.col(1) = x;
   }
-  slim::vcgx::save_surface(a.positional[1], s);
+  slim::io::save_surface(a.positional[1], s);
   return 0;
 }
 

@@ -13,9 +13,10 @@
 #include <vcg/complex/algorithms/update/color.h>
 #include <vcg/complex/algorithms/update/selection.h>
 
-#include "core/surface.h"
+#include "core/geometry/surface.h"
+#include "vcg_adapters/quality_ramp.h"
 
-namespace slim::vcgx {
+namespace slim::vcg_adapters {
 
 template <class MeshType>
 Surface to_surface(const MeshType& m) {
@@ -72,14 +73,8 @@ void write_positions(MeshType& m, const Points& V) {
   vcg::tri::UpdateBounding<MeshType>::Box(m);
 }
 
-// The fixed range of the face-quality colour ramp: n.d + tau lies in [tau - 1, tau + 1] within
-// [-1, 2]; a fixed [-1, 1] ramp gives the same colour to the same value on every mesh, with the
-// risky/safe boundary (0) in the middle: red..yellow risky, green..blue safe.
-constexpr double kQualityRampMin = -1.0;
-constexpr double kQualityRampMax = 1.0;
-
 // Writes per-face quality (#F values in to_surface order); optionally colours faces on the fixed
-// ramp and replaces the face selection by `select` (true = selected).
+// ramp (quality_ramp.h) and replaces the face selection by `select` (true = selected).
 template <class MeshType>
 void write_face_results(MeshType& m, const Eigen::VectorXd& quality, bool colourise,
                         const std::vector<bool>* select) {
@@ -107,4 +102,4 @@ void write_vertex_quality(MeshType& m, const Eigen::VectorXd& quality) {
     if (!v.IsD()) v.Q() = typename MeshType::ScalarType(quality(i++));
 }
 
-}  // namespace slim::vcgx
+}  // namespace slim::vcg_adapters

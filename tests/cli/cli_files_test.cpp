@@ -12,11 +12,11 @@
 #include <string>
 
 #include "cli_run.h"
-#include "core/surface.h"
+#include "core/geometry/surface.h"
+#include "mesh_io/mesh_io.h"
 #include "support/attributed_mesh.h"
 #include "support/bad_inputs.h"
 #include "support/shapes.h"
-#include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
 using test::mentions;
@@ -52,7 +52,7 @@ TEST(CliFiles, PlyRoundTripsItsVertexAndFaceListsAndAttributesAtZeroIterations) 
   const test::CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "' --iterations 0 --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
 
-  const vcgx::MeshFile back = vcgx::read_mesh(out.string());
+  const io::MeshFile back = io::read_mesh(out.string());
   // The arrays themselves, against what was written (positions are small integers, exact in the
   // file's floats; the normals and texture coordinates were floats).
   ASSERT_EQ(back.surface.V.rows(), m.surface.V.rows());
@@ -91,7 +91,7 @@ TEST(CliFiles, SlimmingMovesCopiesTogetherAndKeepsTheListsAndAttributes) {
   // boxes stand on their corners, whose columns stay whatever the faces do: either way the input
   // would come back untouched, and nothing here would be tested.)
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const vcgx::MeshFile back = vcgx::read_mesh(out.string());
+  const io::MeshFile back = io::read_mesh(out.string());
   ASSERT_EQ(back.surface.V.rows(), m.surface.V.rows());
   EXPECT_EQ(back.surface.F, m.surface.F);
   EXPECT_EQ(back.vertex.colour, m.colour);
@@ -137,16 +137,16 @@ TEST(CliFiles, ObjComesBackLineForLineAndOffWithItsColours) {
   // The same part as OFF with vertex colours and normals: the lists and colours come back; the
   // faces carry the run's colour ramp.
   const fs::path off = dir / "parts.off", off_out = dir / "parts_out.off";
-  const vcgx::MeshFile read_obj = vcgx::read_mesh(in.string());
+  const io::MeshFile read_obj = io::read_mesh(in.string());
   ASSERT_EQ(read_obj.vertex.colour.rows(), 6);
-  vcgx::MeshFile as_off = read_obj;
+  io::MeshFile as_off = read_obj;
   as_off.obj.reset();
   as_off.vertex.normal = Points::Zero(6, 3);
   as_off.vertex.normal.col(0).setOnes();
-  vcgx::write_mesh(off.string(), as_off, as_off.surface.V);
+  io::write_mesh(off.string(), as_off, as_off.surface.V);
   r = run_cli("'" + off.string() + "' -o '" + off_out.string() + "' --iterations 0 --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const vcgx::MeshFile back = vcgx::read_mesh(off_out.string());
+  const io::MeshFile back = io::read_mesh(off_out.string());
   EXPECT_EQ(back.surface.V, read_obj.surface.V);
   EXPECT_EQ(back.surface.F, read_obj.surface.F);
   EXPECT_EQ(back.vertex.colour, read_obj.vertex.colour);
@@ -159,14 +159,14 @@ TEST(CliFiles, StlIsWeldedAndTheSummarySaysHowMuch) {
   const fs::path dir = test::scratch();
   const Surface t = test::t_shape();
   const fs::path in = dir / "t.stl", out = dir / "t_out.ply";
-  vcgx::save_surface(in.string(), t);
+  io::save_surface(in.string(), t);
   const test::CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "' --iterations 0 --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find(std::to_string(t.F.rows()) + " triangles; STL stores each corner apart: " +
                        std::to_string(3 * t.F.rows()) + " corners welded into " + std::to_string(t.V.rows()) + " vertices"),
             std::string::npos)
       << r.out;
-  EXPECT_EQ(vcgx::read_mesh(out.string()).surface.V.rows(), t.V.rows());
+  EXPECT_EQ(io::read_mesh(out.string()).surface.V.rows(), t.V.rows());
   expect_no_empty_field(r.out);
   fs::remove_all(dir);
 }
@@ -174,7 +174,7 @@ TEST(CliFiles, StlIsWeldedAndTheSummarySaysHowMuch) {
 TEST(CliFiles, TheSummaryHasNoEmptyFieldWhenNothingOverhangsOrNothingIterates) {
   const fs::path dir = test::scratch();
   const fs::path in = dir / "box.ply", out = dir / "box_out.ply";
-  vcgx::save_surface(in.string(), test::box({0, 0, 0}, {10, 10, 10}));
+  io::save_surface(in.string(), test::box({0, 0, 0}, {10, 10, 10}));
   const test::CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "' --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("no risky faces"), std::string::npos) << r.out;

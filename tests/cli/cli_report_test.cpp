@@ -12,11 +12,11 @@
 #include <string>
 
 #include "cli_run.h"
-#include "core/shape_metrics.h"
-#include "core/support_model.h"
-#include "core/surface_distance.h"
+#include "core/geometry/shape_metrics.h"
+#include "core/geometry/surface_distance.h"
+#include "core/support_model/support_model.h"
+#include "mesh_io/mesh_io.h"
 #include "support/shapes.h"
-#include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
 namespace fs = std::filesystem;
@@ -55,7 +55,7 @@ TEST(CliReport, FiguresAreThoseOfTheFilesWritten) {
   // The voxel resolution the result came from: one of the ladder's rungs (24, 32, 48 by default).
   EXPECT_TRUE(f.at("resolution") == 24 || f.at("resolution") == 32 || f.at("resolution") == 48) << f.at("resolution");
 
-  const Surface in = test::sample_bunny(), slimmed = vcgx::load_surface(out.string());
+  const Surface in = test::sample_bunny(), slimmed = io::load_surface(out.string());
   const double diag = test::bbox_diagonal(in);
   // The support model's figures, of the input and of the file written (float coordinates in it).
   EXPECT_NEAR(f.at("support_estimate_before_mm3"), estimate_support(in).volume_mm3, 1e-9 * f.at("support_estimate_before_mm3"));
@@ -97,7 +97,7 @@ TEST(CliReport, AnOpenMeshIsNamedAndItsLostSlicesCounted) {
   const fs::path dir = test::scratch();
   const fs::path in = dir / "window_box.ply", out = dir / "slim.ply", report = dir / "slim.json";
   const Surface box = test::box_with_windows(5.0);
-  vcgx::save_surface(in.string(), box);
+  io::save_surface(in.string(), box);
   const test::CliRun r = test::run_cli("'" + in.string() + "' -o '" + out.string() + "' --report '" + report.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::string text;
@@ -125,7 +125,7 @@ TEST(CliReport, TheCreaseLimitHoldsInTheFileWritten) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     std::string text;
     const std::map<std::string, double> f = read_numbers(report, text);
-    share[limited] = shape_change(in, vcgx::load_surface(out.string())).crease_share_pct;
+    share[limited] = shape_change(in, io::load_surface(out.string())).crease_share_pct;
     EXPECT_LT(f.at("support_estimate_after_mm3"), f.at("support_estimate_before_mm3")) << limited;
   }
   EXPECT_LE(share[1], 0.05 + 0.02);

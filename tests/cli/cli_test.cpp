@@ -6,13 +6,13 @@
 #include <sstream>
 #include <string>
 
-#include "core/orientation.h"
-#include "core/overhang.h"
-#include "core/slimming.h"
 #include "cli_run.h"
+#include "core/optimizer/slimming.h"
+#include "core/orientation/orientation.h"
+#include "core/print/overhang.h"
+#include "mesh_io/mesh_io.h"
 #include "support/bad_inputs.h"
 #include "support/shapes.h"
-#include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
 using test::mentions;
@@ -28,12 +28,12 @@ TEST(Cli, RoundTripsEveryFormatInTheInputsFrame) {
   const Surface arch = test::transformed(test::refined(test::arch(), 2), Eigen::Matrix3d::Identity(), {500, -300, 0});
   for (const std::string ext : {"ply", "stl", "obj", "off"}) {
     const fs::path in = dir / ("arch." + ext), out = dir / ("arch_slim." + ext);
-    vcgx::save_surface(in.string(), arch);
+    io::save_surface(in.string(), arch);
     // Any saving will do (--min-saving 0): this small arch saves under the default's 3%.
     const CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "' --max-deviation 5 --min-saving 0 --quiet");
     ASSERT_EQ(r.exit_code, 0) << ext << ": " << r.err;
     EXPECT_NE(r.out.find("risky area"), std::string::npos) << r.out;
-    const Surface back = vcgx::load_surface(out.string());
+    const Surface back = io::load_surface(out.string());
     EXPECT_EQ(back.F.rows(), arch.F.rows()) << ext;
     EXPECT_NEAR(back.V.col(0).mean(), arch.V.col(0).mean(), 2.0) << ext;  // no recentring
     EXPECT_NEAR(back.V.col(2).minCoeff(), 0.0, 1e-3) << ext;              // still on the plate
@@ -49,8 +49,8 @@ TEST(Cli, PlyOutputCarriesQualityAndTheStillRiskySelection) {
   const fs::path out = dir / "bunny.ply";
   const CliRun r = run_cli("'" + test::sample_bunny_path() + "' -o '" + out.string() + "' --method paper --iterations 3 --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  vcgx::FaceExtras extras;
-  const Surface back = vcgx::load_surface(out.string(), &extras);
+  io::FaceExtras extras;
+  const Surface back = io::load_surface(out.string(), &extras);
   ASSERT_EQ(extras.quality.size(), back.F.rows());
   ASSERT_EQ(extras.selected.size(), static_cast<size_t>(back.F.rows()));
   for (Eigen::Index f = 0; f < back.F.rows(); ++f) EXPECT_EQ(extras.selected[static_cast<size_t>(f)], extras.quality(f) < 0);
@@ -78,7 +78,7 @@ TEST(Cli, OrientTurnsThePartFirstAndSlimsItInItsPrintPose) {
   const Surface upside_down =
       test::transformed(test::refined(test::printable_mushroom(), 1), test::axis_angle({1, 0, 0}, M_PI), {40, 5, 20});
   const fs::path in = dir / "mushroom.ply", out = dir / "slimmed.ply", posed = dir / "oriented.ply";
-  vcgx::save_surface(in.string(), upside_down);
+  io::save_surface(in.string(), upside_down);
   const CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "' --orient --oriented-output '" +
                            posed.string() + "' --iterations 3 --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -86,9 +86,9 @@ TEST(Cli, OrientTurnsThePartFirstAndSlimsItInItsPrintPose) {
                            "(oriented) ->", "(slimmed)", "1. score", "as given: score"})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing from\n" << r.out;
 
-  const Surface read_in = vcgx::load_surface(in.string());
+  const Surface read_in = io::load_surface(in.string());
   const Surface expected = apply_orientation(read_in, optimize_orientation(read_in).rotation);
-  const Surface oriented = vcgx::load_surface(posed.string()), slimmed = vcgx::load_surface(out.string());
+  const Surface oriented = io::load_surface(posed.string()), slimmed = io::load_surface(out.string());
   ASSERT_EQ(oriented.F, read_in.F);
   EXPECT_LT((oriented.V - expected.V).cwiseAbs().maxCoeff(), 1e-4);
   EXPECT_NEAR(oriented.V.col(2).minCoeff(), 0.0, 1e-5);
@@ -104,7 +104,7 @@ TEST(Cli, OrientTurnsThePartFirstAndSlimsItInItsPrintPose) {
   const CliRun b = run_cli("'" + test::sample_bunny_path() + "' -o '" + bunny_out.string() + "' --orient --oriented-output '" +
                            bunny_posed.string() + "' --iterations 10 --min-saving 0 --quiet");
   ASSERT_EQ(b.exit_code, 0) << b.err;
-  const Surface bunny_oriented = vcgx::load_surface(bunny_posed.string()), bunny_slimmed = vcgx::load_surface(bunny_out.string());
+  const Surface bunny_oriented = io::load_surface(bunny_posed.string()), bunny_slimmed = io::load_surface(bunny_out.string());
   ASSERT_EQ(bunny_slimmed.V.rows(), bunny_oriented.V.rows());
   const double moved = (bunny_slimmed.V - bunny_oriented.V).rowwise().norm().maxCoeff();
   const size_t at = b.out.find("displacement    max ");
@@ -121,15 +121,15 @@ TEST(Cli, OrientTurnsThePartFirstAndSlimsItInItsPrintPose) {
 TEST(Cli, ASmallSavingReturnsThePartAsGiven) {
   const fs::path dir = scratch();
   const fs::path in = dir / "mushroom.ply", out = dir / "mushroom_slim.ply";
-  vcgx::save_surface(in.string(), test::refined(test::mushroom(), 2));
-  const Surface given = vcgx::load_surface(in.string());
+  io::save_surface(in.string(), test::refined(test::mushroom(), 2));
+  const Surface given = io::load_surface(in.string());
   const CliRun kept = run_cli("'" + in.string() + "' -o '" + out.string() + "' --quiet");
   ASSERT_EQ(kept.exit_code, 0) << kept.err;
-  EXPECT_EQ(vcgx::load_surface(out.string()).V, given.V);
+  EXPECT_EQ(io::load_surface(out.string()).V, given.V);
   EXPECT_NE(kept.out.find("worth a change of shape, so the input is returned unchanged"), std::string::npos) << kept.out;
   const CliRun any = run_cli("'" + in.string() + "' -o '" + out.string() + "' --min-saving 0 --quiet");
   ASSERT_EQ(any.exit_code, 0) << any.err;
-  EXPECT_GT((vcgx::load_surface(out.string()).V - given.V).cwiseAbs().maxCoeff(), 0.1);
+  EXPECT_GT((io::load_surface(out.string()).V - given.V).cwiseAbs().maxCoeff(), 0.1);
   EXPECT_EQ(any.out.find("returned unchanged"), std::string::npos) << any.out;
   fs::remove_all(dir);
 }
@@ -217,7 +217,7 @@ TEST_P(BadInputCli, WritesASaneMeshOrExitsWithOneLine) {
   } else {
     ASSERT_EQ(r.exit_code, 0) << c.name << ": " << r.err;
     EXPECT_EQ(mentions(r.out, "inside out"), c.inside_out) << r.out;
-    const Surface input = vcgx::load_surface(in.string()), result = vcgx::load_surface(out.string());
+    const Surface input = io::load_surface(in.string()), result = io::load_surface(out.string());
     ASSERT_EQ(result.F, input.F);
     ASSERT_TRUE(result.V.allFinite());
     OverhangOptions o;

@@ -9,13 +9,13 @@
 #include <map>
 #include <sstream>
 
-#include "core/orientation.h"
-#include "core/support_model.h"
+#include "core/orientation/orientation.h"
+#include "core/support_model/support_model.h"
 #include "key_values.h"
+#include "mesh_io/mesh_io.h"
 #include "run_command.h"
 #include "support/shapes.h"
 #include "support/source_paths.h"
-#include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
 namespace fs = std::filesystem;
@@ -57,7 +57,7 @@ TEST(Corpus, EveryModelArrivesInItsPrintPoseWithItsFaces) {
   EXPECT_EQ(faces, expected);
   for (const auto& [name, count] : expected) {
     SCOPED_TRACE(name);
-    const Surface s = vcgx::load_surface((out / (name + ".ply")).string());
+    const Surface s = io::load_surface((out / (name + ".ply")).string());
     EXPECT_EQ(s.F.rows(), count);
     // The print pose: resting on the plate, the longest side 60 mm, outward (positive volume).
     const Eigen::RowVector3d lo = s.V.colwise().minCoeff(), hi = s.V.colwise().maxCoeff();
@@ -68,7 +68,7 @@ TEST(Corpus, EveryModelArrivesInItsPrintPoseWithItsFaces) {
   // The duck sits on its flat underside. On its side it casts less shadow, and the support model
   // gives it 0.1% less support, a tie within the model's noise; PrusaSlicer gives 4.3% more. A tie
   // goes to the pose resting more on the plate: Print Orientation leaves the duck as it is.
-  const OrientationResult duck = optimize_orientation(vcgx::load_surface((out / "duck.ply").string()));
+  const OrientationResult duck = optimize_orientation(io::load_surface((out / "duck.ply").string()));
   EXPECT_EQ(duck.best.direction, Eigen::Vector3d::UnitZ());
   bool tie = false;  // a turn the score prefers that the model cannot tell from the pose as given
   for (size_t k = 1; k < duck.top.size(); ++k) {
@@ -100,9 +100,9 @@ TEST(Corpus, TheSupportModelPredictsPrusaSlicersChangeOnTheHinge) {
   judged.turns = 2;
   double prusa[2], model[2];
   for (int k = 0; k < 2; ++k) {
-    const Surface part = vcgx::load_surface((k == 0 ? input : result).string());
+    const Surface part = io::load_surface((k == 0 ? input : result).string());
     const fs::path stl = dir / (k == 0 ? "input.stl" : "result.stl");
-    vcgx::save_surface(stl.string(), part);
+    io::save_surface(stl.string(), part);
     const test::CommandRun sliced = test::run_command(
         test::shell_quote(test::source_dir() + "/tools/slice_support.sh") + " " + test::shell_quote(stl.string()) +
         " --slicer prusa --angle 45 --turns 0,90 --build " + test::shell_quote(SLIM_BINARY_DIR) + " --out " +

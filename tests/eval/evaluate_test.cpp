@@ -10,13 +10,13 @@
 #include <map>
 #include <sstream>
 
-#include "core/shape_metrics.h"
+#include "core/geometry/shape_metrics.h"
 #include "gcode_extrusion.h"
 #include "key_values.h"
+#include "mesh_io/mesh_io.h"
 #include "run_command.h"
 #include "support/shapes.h"
 #include "support/source_paths.h"
-#include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
 namespace fs = std::filesystem;
@@ -59,7 +59,7 @@ Judged judge_arch(double angle, const std::string& more = "") {
   Judged j;
   const fs::path dir = scratch("arch_" + std::to_string(static_cast<int>(angle)));
   const fs::path mesh = dir / "arch.ply";
-  vcgx::save_surface(mesh.string(), test::refined(test::arch(), 3));
+  io::save_surface(mesh.string(), test::refined(test::arch(), 3));
   j.out = dir / "report";
   j.run = evaluate(test::shell_quote(mesh.string()) + " --angle " + std::to_string(angle) + " --out " +
                    test::shell_quote(j.out.string()) + " " + more);
@@ -106,8 +106,8 @@ TEST(Evaluate, SlimmedArchNeedsLessSupportInPrusaSlicer) {
   EXPECT_LT(j.metrics.at("cura_support_mm3_after"), (1.0 - kSlicerNoise) * j.metrics.at("cura_support_mm3_before"));
 
   // Volume change and crease share are the core's, from the two meshes.
-  const ShapeChange c = shape_change(vcgx::load_surface((j.out / "input.ply").string()),
-                                     vcgx::load_surface((j.out / "slimmed.ply").string()));
+  const ShapeChange c = shape_change(io::load_surface((j.out / "input.ply").string()),
+                                     io::load_surface((j.out / "slimmed.ply").string()));
   EXPECT_NEAR(j.metrics.at("volume_change_pct"), c.volume_change_pct, 1e-3);
   EXPECT_NEAR(j.metrics.at("crease_share_pct"), c.crease_share_pct, 1e-3);
   EXPECT_NEAR(j.metrics.at("crease_p99_deg"), c.crease_p99_deg, 1e-3);
@@ -153,7 +153,7 @@ TEST(Evaluate, OrientModeJudgesInputOrientedAndSlimmedAndMeasuresOnlyTheSlimming
   // (PrusaSlicer: about 83% less), and the shape change reported is the slimming's alone.
   const fs::path dir = scratch("mushroom_orient");
   const fs::path mesh = dir / "mushroom.ply";
-  vcgx::save_surface(mesh.string(), test::refined(test::mushroom(), 1));
+  io::save_surface(mesh.string(), test::refined(test::mushroom(), 1));
   const fs::path out = dir / "report";
   const test::CommandRun run =
       evaluate(test::shell_quote(mesh.string()) + " --orient --turns 0,90 --out " + test::shell_quote(out.string()));
@@ -184,7 +184,7 @@ TEST(Evaluate, BadInputFailsWithAOneLineReason) {
   const fs::path junk = dir / "junk.stl";
   std::ofstream(junk) << "this is not a mesh\n";
   const fs::path arch = dir / "arch_small.ply";
-  vcgx::save_surface(arch.string(), test::arch());
+  io::save_surface(arch.string(), test::arch());
   for (const std::string& args :
        {test::shell_quote((dir / "missing.stl").string()), test::shell_quote(junk.string()),
         test::shell_quote(arch.string()) + " --angle 90", test::shell_quote(arch.string()) + " --size ten",

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "core/overhang.h"
+#include "core/print/overhang.h"
 #include "gcode_extrusion.h"
 #include "orient_faces.h"
 #include "print_setup.h"

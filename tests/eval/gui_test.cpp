@@ -14,12 +14,12 @@
 
 #include <common/pluginmanager.h>
 
-#include "core/overhang.h"
+#include "core/print/overhang.h"
 #include "harness.h"
+#include "mesh_io/mesh_io.h"
 #include "run_command.h"
 #include "support/shapes.h"
 #include "support/source_paths.h"
-#include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
 namespace fs = std::filesystem;
@@ -76,8 +76,8 @@ TEST(MeshLabGui, SupportSlimmingFromTheFiltersMenuAddsASlimmedLayer) {
 
   // The exported layer is the input deformed: same mesh, vertices moved, fewer risky faces.
   const Surface input = test::load_mesh(mesh);
-  vcgx::FaceExtras extras;
-  const Surface layer = vcgx::load_surface((out / "layer.ply").string(), &extras);
+  io::FaceExtras extras;
+  const Surface layer = io::load_surface((out / "layer.ply").string(), &extras);
   ASSERT_EQ(layer.V.rows(), input.V.rows());
   ASSERT_EQ(layer.F, input.F);
   const double diag = (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm();

@@ -10,14 +10,14 @@
 #include <map>
 #include <vector>
 
+#include "core/support_model/support_model.h"
 #include "gcode_extrusion.h"
-#include "print_setup.h"
 #include "key_values.h"
+#include "mesh_io/mesh_io.h"
+#include "print_setup.h"
 #include "run_command.h"
 #include "support/shapes.h"
 #include "support/source_paths.h"
-#include "core/support_model.h"
-#include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
 namespace fs = std::filesystem;
@@ -52,7 +52,7 @@ Extent measure(const fs::path& gcode) {
 fs::path write_arch(const fs::path& dir) {
   const eval::PrintFrame f = eval::to_print_frame(test::refined(test::arch(), 1), Eigen::Vector3d::UnitZ(), 60.0);
   const fs::path stl = dir / "arch.stl";
-  vcgx::save_surface(stl.string(), f.surface);
+  io::save_surface(stl.string(), f.surface);
   return stl;
 }
 
@@ -134,7 +134,7 @@ TEST(SliceSupport, TheSupportModelReadsAnOpenMeshAsPrusaSlicerSlicesIt) {
     SCOPED_TRACE(width);
     const Surface box = test::box_with_windows(width, windows);
     const fs::path stl = dir / ("box_" + std::to_string(windows) + ".stl");
-    vcgx::save_surface(stl.string(), box);
+    io::save_surface(stl.string(), box);
     const test::CommandRun p = slice(stl, "prusa", dir / ("prusa_" + std::to_string(windows)));
     ASSERT_EQ(p.exit_code, 0) << p.output;
     const double prusa = parse_metrics(p.output).at("support_mm3"), model = estimate_support(box, at_slicer_phase).volume_mm3;
@@ -194,7 +194,7 @@ TEST(SliceSupport, TheSupportModelsBaseFollowsPrusaSlicersZigzagAlongASteppedOut
     const Surface part = inverted_pyramid_on_a_post(r, 30.0);
     ASSERT_GT(signed_volume(part), 0.0);
     const fs::path stl = dir / ("pyramid_" + std::to_string(static_cast<int>(10 * r)) + ".stl");
-    vcgx::save_surface(stl.string(), part);
+    io::save_surface(stl.string(), part);
     const test::CommandRun p = slice(stl, "prusa", dir / ("prusa_" + std::to_string(static_cast<int>(10 * r))), "--turns 0,90");
     ASSERT_EQ(p.exit_code, 0) << p.output;
     const std::map<std::string, double> m = parse_metrics(p.output);
@@ -223,7 +223,7 @@ TEST(SliceSupport, TheSupportModelSeesAFootsFlareWherePrusaSlicerDoes) {
     SCOPED_TRACE(i);
     const Surface foot = test::flared_foot(flares[i]);
     const fs::path stl = dir / ("foot_" + std::to_string(i) + ".stl");
-    vcgx::save_surface(stl.string(), foot);
+    io::save_surface(stl.string(), foot);
     const test::CommandRun p = slice(stl, "prusa", dir / ("prusa_" + std::to_string(i)), "--turns 0,90");
     ASSERT_EQ(p.exit_code, 0) << p.output;
     const double prusa = parse_metrics(p.output).at("support_mm3"), model = estimate_support(foot, at_slicer_phase).volume_mm3;
@@ -245,7 +245,7 @@ TEST(SliceSupport, WhereTheInterfaceReachesThePlateNeitherGrowsAFirstLayer) {
   const fs::path dir = scratch("slice_support_low_slab");
   const Surface slab = test::merge(test::box({-2, -2, 0}, {2, 2, 1}), test::box({-10, -10, 1}, {10, 10, 3}));
   const fs::path stl = dir / "slab.stl";
-  vcgx::save_surface(stl.string(), slab);
+  io::save_surface(stl.string(), slab);
   const test::CommandRun p = slice(stl, "prusa", dir / "prusa", "--turns 0");
   ASSERT_EQ(p.exit_code, 0) << p.output;
   const std::map<std::string, double> m = parse_metrics(p.output);

@@ -8,9 +8,9 @@
 #include <iostream>
 #include <string>
 
+#include "mesh_io/mesh_io.h"
 #include "support/creatures.h"
 #include "support/shapes.h"
-#include "vcg_adapters/mesh_io.h"
 
 int main(int argc, char** argv) {
   if (argc < 3 || argc > 4) {
@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
       std::cerr << "write_shape: unknown shape '" << name << "' (t, mushroom, arch, window_box, quadruped, long_neck, upright)\n";
       return 1;
     }
-    slim::vcgx::save_surface(argv[2], slim::test::refined(s, levels));
+    slim::io::save_surface(argv[2], slim::test::refined(s, levels));
   } catch (const std::exception& e) {
     std::cerr << "write_shape: " << e.what() << "\n";
     return 1;

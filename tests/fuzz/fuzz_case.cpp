@@ -6,12 +6,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/embedding.h"
-#include "core/min_rotation.h"
-#include "core/orientation.h"
-#include "core/overhang.h"
-#include "core/tet_mesh.h"
-#include "core/voxel_domain.h"
+#include "core/domain/embedding.h"
+#include "core/domain/voxel_domain.h"
+#include "core/geometry/tet_mesh.h"
+#include "core/orientation/orientation.h"
+#include "core/print/overhang.h"
+#include "core/rotation/min_rotation.h"
 #include "support/bad_inputs.h"
 
 namespace slim::fuzz {

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "core/slimming.h"
+#include "core/optimizer/slimming.h"
 
 namespace slim::fuzz {
 

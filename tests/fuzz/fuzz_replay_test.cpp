@@ -13,7 +13,7 @@
 #include "support/source_paths.h"
 #ifdef SLIM_FUZZ_READERS
 #include "fuzz/reader_case.h"
-#include "vcg_adapters/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 #endif
 
 namespace fs = std::filesystem;
@@ -107,9 +107,9 @@ TEST(ReaderFuzzCase, EveryBadFileIsRefusedAndEveryValidSeedReads) {
     const std::string file = std::string("seed.") + extensions[bytes.at(0) % 4];
     const std::string contents(bytes.begin() + 1, bytes.end());
     if (name.rfind("valid_", 0) == 0) {
-      EXPECT_NO_THROW(slim::vcgx::parse_mesh(file, contents)) << name;
+      EXPECT_NO_THROW(slim::io::parse_mesh(file, contents)) << name;
     } else {
-      EXPECT_THROW(slim::vcgx::parse_mesh(file, contents), std::runtime_error) << name;
+      EXPECT_THROW(slim::io::parse_mesh(file, contents), std::runtime_error) << name;
     }
   }
   const std::uint8_t empty_stl = 1;

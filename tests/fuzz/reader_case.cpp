@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <unistd.h>
 
+#include "mesh_io/mesh_io.h"
 #include "support/bad_inputs.h"
 #include "support/shapes.h"
-#include "vcg_adapters/mesh_io.h"
 
 namespace slim::fuzz {
 namespace {
@@ -32,15 +32,15 @@ bool same(const A& a, const B& b) {
 }
 
 // What a well-formed MeshFile must satisfy, whatever the bytes were.
-std::string shape_problem(const vcgx::MeshFile& f) {
+std::string shape_problem(const io::MeshFile& f) {
   const Eigen::Index nv = f.surface.V.rows(), nf = f.surface.F.rows();
   if (f.surface.V.cols() != 3 || f.surface.F.cols() != 3) return "the surface is not #V by 3 and #F by 3";
   if (nf > 0 && (f.surface.F.minCoeff() < 0 || f.surface.F.maxCoeff() >= nv)) return "a face index outside the vertices";
-  const vcgx::VertexAttributes& v = f.vertex;
+  const io::VertexAttributes& v = f.vertex;
   if (!rows_ok(v.colour, nv) || !rows_ok(v.normal, nv) || !rows_ok(v.texcoord, nv) || !rows_ok(v.quality, nv) ||
       !(v.selected.empty() || v.selected.size() == static_cast<size_t>(nv)))
     return "a vertex attribute with a row count other than #V";
-  const vcgx::FaceAttributes& a = f.face;
+  const io::FaceAttributes& a = f.face;
   if (!rows_ok(a.colour, nf) || !rows_ok(a.quality, nf) || !rows_ok(a.wedge_texcoord, nf) ||
       a.texture.size() != a.wedge_texcoord.rows() || !(a.selected.empty() || a.selected.size() == static_cast<size_t>(nf)))
     return "a face attribute with a row count other than #F";
@@ -48,14 +48,14 @@ std::string shape_problem(const vcgx::MeshFile& f) {
 }
 
 // Written back in its own format and read again: the same lists and attributes.
-std::string round_trip_problem(const std::string& ext, const vcgx::MeshFile& f) {
+std::string round_trip_problem(const std::string& ext, const io::MeshFile& f) {
   if (!f.surface.V.allFinite() || f.surface.V.rows() == 0 || f.surface.F.rows() == 0) return "";
   const std::filesystem::path path =
       std::filesystem::temp_directory_path() / ("slim-reader-fuzz-" + std::to_string(::getpid()) + "." + ext);
-  vcgx::MeshFile back;
+  io::MeshFile back;
   try {
-    vcgx::write_mesh(path.string(), f, f.surface.V);
-    back = vcgx::read_mesh(path.string());
+    io::write_mesh(path.string(), f, f.surface.V);
+    back = io::read_mesh(path.string());
   } catch (const std::exception& e) {
     std::filesystem::remove(path);
     return std::string("writing it back and reading it again failed: ") + e.what();
@@ -100,9 +100,9 @@ std::string run_reader_case(const std::uint8_t* data, size_t size) {
   const std::string ext = kExtensions[size > 0 ? data[0] % 4 : 0];
   const std::string name = "fuzz." + ext;
   const std::string bytes = size > 0 ? std::string(reinterpret_cast<const char*>(data) + 1, size - 1) : std::string();
-  vcgx::MeshFile f;
+  io::MeshFile f;
   try {
-    f = vcgx::parse_mesh(name, bytes);
+    f = io::parse_mesh(name, bytes);
   } catch (const std::runtime_error& e) {
     const std::string why = e.what();
     if (why.rfind("cannot read " + name + ": ", 0) != 0) return "a refusal that does not name the file: " + why;
@@ -135,17 +135,17 @@ std::vector<std::pair<std::string, std::vector<std::uint8_t>>> reader_seeds() {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("slim-seeds-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const Surface t = test::t_shape();
-  auto written = [&](const std::string& file, const vcgx::MeshFile& m, const vcgx::FaceExtras& extras) {
+  auto written = [&](const std::string& file, const io::MeshFile& m, const io::FaceExtras& extras) {
     const std::string path = (dir / file).string();
-    vcgx::write_mesh(path, m, m.surface.V, extras);
+    io::write_mesh(path, m, m.surface.V, extras);
     return file_bytes(path);
   };
-  vcgx::MeshFile coloured;
+  io::MeshFile coloured;
   coloured.surface = t;
-  coloured.vertex.colour = vcgx::Rgba::Constant(t.V.rows(), 4, 200);
+  coloured.vertex.colour = io::Rgba::Constant(t.V.rows(), 4, 200);
   coloured.vertex.normal = Points::Zero(t.V.rows(), 3);
   coloured.vertex.normal.col(2).setOnes();
-  const vcgx::FaceExtras results{Eigen::VectorXd::LinSpaced(t.F.rows(), -1, 1), std::vector<bool>(static_cast<size_t>(t.F.rows()), true)};
+  const io::FaceExtras results{Eigen::VectorXd::LinSpaced(t.F.rows(), -1, 1), std::vector<bool>(static_cast<size_t>(t.F.rows()), true)};
   seeds.emplace_back("valid_binary_ply.bin", encode_reader_case("ply", written("t.ply", coloured, results)));
   seeds.emplace_back("valid_binary_stl.bin", encode_reader_case("stl", written("t.stl", coloured, {})));
   seeds.emplace_back("valid_off_colours_normals.bin", encode_reader_case("off", written("t.off", coloured, results)));

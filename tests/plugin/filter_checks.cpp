@@ -4,7 +4,7 @@
 
 #include <common/filterscript.h>
 
-#include "core/welded_view.h"
+#include "core/geometry/welded_view.h"
 #include "support/source_paths.h"
 #include "vcg_adapters/surface_adapter.h"
 
@@ -51,8 +51,8 @@ void expect_slimmed_layer(const MeshModel& input, const MeshModel& out, const st
   // Quality, selection and vertex quality say what the core says about the new shape.
   OverhangOptions o;
   o.plate_tolerance = plate_tolerance;
-  const OverhangReport now = analyse_overhang(vcgx::to_surface(out.cm), o);
-  const OverhangReport before = analyse_overhang(vcgx::to_surface(input.cm), o);
+  const OverhangReport now = analyse_overhang(vcg_adapters::to_surface(out.cm), o);
+  const OverhangReport before = analyse_overhang(vcg_adapters::to_surface(input.cm), o);
   EXPECT_LT(now.risky_area, before.risky_area);
   int selected = 0;
   for (int f = 0; f < out.cm.fn; ++f) {
@@ -74,8 +74,8 @@ void expect_oriented_layer(const MeshModel& input, const MeshModel& out, const s
   ASSERT_NE(&out, &input);
   EXPECT_EQ(positions(input), original);  // the input layer is untouched
   EXPECT_EQ(out.label(), input.label() + " oriented");
-  const Surface seen = vcgx::to_surface(input.cm);  // float positions, as the filter saw them
-  const Surface got = vcgx::to_surface(out.cm);
+  const Surface seen = vcg_adapters::to_surface(input.cm);  // float positions, as the filter saw them
+  const Surface got = vcg_adapters::to_surface(out.cm);
   ASSERT_EQ(got.F, seen.F);  // orienting never adds, removes or reorders a face
   const OrientationResult best = optimize_orientation(weld_coincident(seen).surface, options);  // as the filter computes
   const Surface expected = apply_orientation(seen, best.rotation);

@@ -8,8 +8,8 @@
 #include <QString>
 #include <QStringList>
 
-#include "core/orientation.h"
-#include "core/overhang.h"
+#include "core/orientation/orientation.h"
+#include "core/print/overhang.h"
 #include "meshlab_api.h"
 
 namespace slim::test {

@@ -13,7 +13,7 @@
 #include <common/interfaces.h>
 #include <common/meshmodel.h>
 
-#include "core/surface.h"
+#include "core/geometry/surface.h"
 #include "layers.h"
 
 namespace slim::test {

@@ -5,7 +5,7 @@
 
 #include <QString>
 
-#include "core/surface.h"
+#include "core/geometry/surface.h"
 
 class MeshDocument;
 class MeshModel;

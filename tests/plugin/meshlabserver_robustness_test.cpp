@@ -13,14 +13,14 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "core/orientation.h"
-#include "core/overhang.h"
-#include "core/welded_view.h"
+#include "core/geometry/welded_view.h"
+#include "core/orientation/orientation.h"
+#include "core/print/overhang.h"
 #include "harness.h"
+#include "mesh_io/mesh_io.h"
 #include "support/bad_inputs.h"
 #include "support/shapes.h"
 #include "support/source_paths.h"
-#include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
 using test::BadInput;
@@ -106,9 +106,9 @@ TEST_P(BadInputServer, SupportSlimmingSavesASaneLayerOrFailsWithItsReason) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_FALSE(mentions(run.output, "Problem with filter")) << run.output;
   EXPECT_EQ(mentions(run.output, "inside out"), c.inside_out) << run.output;
-  const Surface input = vcgx::load_surface(in.string());
-  vcgx::FaceExtras saved;
-  const Surface result = vcgx::load_surface(out.string(), &saved);
+  const Surface input = io::load_surface(in.string());
+  io::FaceExtras saved;
+  const Surface result = io::load_surface(out.string(), &saved);
   ASSERT_EQ(result.F.rows(), input.F.rows());
   ASSERT_EQ(saved.quality.size(), input.F.rows());
   ASSERT_TRUE(result.V.allFinite());
@@ -143,7 +143,7 @@ TEST_P(BadInputServer, PrintOrientationSavesTheBestPoseOrFailsWithItsReason) {
   const test::ServerRun run = test::run_meshlabserver("-i '" + in.string() + "' -o '" + out.string() +
                                                       "' -m fq fc sa -s '" + mlx.string() + "'");
   EXPECT_FALSE(crashed(run)) << run.output;
-  const Surface input = vcgx::load_surface(in.string());
+  const Surface input = io::load_surface(in.string());
   std::string refusal;
   const OrientationResult expected = test::fast_orientation(input, c.options.alpha_max_deg, refusal);
   if (!refusal.empty()) {
@@ -156,7 +156,7 @@ TEST_P(BadInputServer, PrintOrientationSavesTheBestPoseOrFailsWithItsReason) {
   }
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_FALSE(mentions(run.output, "Problem with filter")) << run.output;
-  const Surface result = vcgx::load_surface(out.string());
+  const Surface result = io::load_surface(out.string());
   ASSERT_EQ(result.F, input.F);
   ASSERT_TRUE(result.V.allFinite());
   const double size = std::max(1.0, input.V.cwiseAbs().maxCoeff());

@@ -7,12 +7,12 @@
 #include <unistd.h>
 #include <regex>
 
-#include "core/orientation.h"
-#include "core/overhang.h"
+#include "core/orientation/orientation.h"
+#include "core/print/overhang.h"
 #include "harness.h"
+#include "mesh_io/mesh_io.h"
 #include "support/shapes.h"
 #include "support/source_paths.h"
-#include "vcg_adapters/mesh_io.h"
 
 using namespace slim;
 namespace fs = std::filesystem;
@@ -47,8 +47,8 @@ TEST(Meshlabserver, OverhangAnalysisScriptOnTheBunny) {
   EXPECT_GT(core.risky_count, 0);
 
   // The saved PLY carries face quality (n·d + tau, negative = risky) and colour.
-  vcgx::FaceExtras saved;
-  const Surface back = vcgx::load_surface(out.string(), &saved);
+  io::FaceExtras saved;
+  const Surface back = io::load_surface(out.string(), &saved);
   ASSERT_EQ(back.F.rows(), bunny.F.rows());
   ASSERT_EQ(saved.quality.size(), bunny.F.rows());
   EXPECT_LT((saved.quality - core.quality).cwiseAbs().maxCoeff(), 1e-4);
@@ -76,8 +76,8 @@ TEST(Meshlabserver, SupportSlimmingScriptOnTheBunny) {
   // meshlabserver saves the current layer: the new "slimmed" one, deformed, with face quality
   // whose negative part is the logged risky area.
   const Surface input = test::load_mesh(in);
-  vcgx::FaceExtras saved;
-  const Surface result = vcgx::load_surface(out.string(), &saved);
+  io::FaceExtras saved;
+  const Surface result = io::load_surface(out.string(), &saved);
   ASSERT_EQ(result.F.rows(), input.F.rows());
   ASSERT_EQ(saved.quality.size(), input.F.rows());
   EXPECT_GT((result.V - input.V).cwiseAbs().maxCoeff(), 1e-3);
@@ -108,8 +108,8 @@ TEST(Meshlabserver, PrintOrientationScriptOnTheBunny) {
   const Surface input = test::load_mesh(in);
   const OrientationResult core = optimize_orientation(input);
   EXPECT_NEAR(after, core.best.shadow_volume, 1e-3 * core.best.shadow_volume);
-  vcgx::FaceExtras saved;
-  const Surface result = vcgx::load_surface(out.string(), &saved);
+  io::FaceExtras saved;
+  const Surface result = io::load_surface(out.string(), &saved);
   ASSERT_EQ(result.F, input.F);
   EXPECT_LT((result.V - apply_orientation(input, core.rotation).V).cwiseAbs().maxCoeff(), 1e-4);
   EXPECT_NEAR(result.V.col(2).minCoeff(), 0.0, 1e-5);

@@ -16,9 +16,9 @@
 
 #include <common/filterscript.h>
 
-#include "core/orientation.h"
-#include "core/overhang.h"
-#include "core/welded_view.h"
+#include "core/geometry/welded_view.h"
+#include "core/orientation/orientation.h"
+#include "core/print/overhang.h"
 #include "harness.h"
 #include "support/bad_inputs.h"
 #include "support/shapes.h"
@@ -76,7 +76,7 @@ RichParameterList slimming_params(PluginHarness& h, MeshDocument& md, const BadI
 
 // The layer as the core sees it, and its overhangs (turned over when inside out).
 OverhangReport measure(const MeshModel& m, const BadInput& c, double plate_tolerance) {
-  const Surface s = vcgx::to_surface(m.cm);
+  const Surface s = vcg_adapters::to_surface(m.cm);
   OverhangOptions o;
   o.print_direction = c.options.print_direction;
   o.alpha_max_deg = c.options.alpha_max_deg;
@@ -133,7 +133,7 @@ TEST_P(BadInputPlugin, SupportSlimmingAddsASaneLayerOrRefusesLeavingTheDocumentA
   EXPECT_TRUE(out->hasDataMask(MeshModel::MM_FACEQUALITY) && out->hasDataMask(MeshModel::MM_VERTQUALITY));
 
   // Sane statistics, measured on the layers (float positions: tolerances of a few float ulps).
-  const Surface in_s = vcgx::to_surface(input->cm), out_s = vcgx::to_surface(out->cm);
+  const Surface in_s = vcg_adapters::to_surface(input->cm), out_s = vcg_adapters::to_surface(out->cm);
   const double diag = (in_s.V.colwise().maxCoeff() - in_s.V.colwise().minCoeff()).norm();
   const double ulps = 1e-6 * std::max(diag, in_s.V.cwiseAbs().maxCoeff());
   const double tolerance = params.getAbsPerc("plateTolerance");
@@ -195,7 +195,7 @@ TEST_P(BadInputPlugin, PrintOrientationAddsTheBestPoseOrRefusesLeavingTheDocumen
   RichParameterList params = h.defaults(kOrientation, md);
   params.setValue("alphaMax", FloatValue(float(c.options.alpha_max_deg)));
   params.setValue("searchEffort", EnumValue(0));
-  const Surface seen = vcgx::to_surface(input->cm);
+  const Surface seen = vcg_adapters::to_surface(input->cm);
   std::string core_refusal;
   const OrientationResult expected = test::fast_orientation(seen, params.getFloat("alphaMax"), core_refusal);
   const auto [ok, error, log] = run_filter(h, kOrientation, md, params);
@@ -216,10 +216,10 @@ TEST_P(BadInputPlugin, PrintOrientationAddsTheBestPoseOrRefusesLeavingTheDocumen
   }
   ASSERT_TRUE(ok) << c.name << ": " << error;
   ASSERT_EQ(md.meshList.size(), 2);
-  const Surface got = vcgx::to_surface(md.mm()->cm);
+  const Surface got = vcg_adapters::to_surface(md.mm()->cm);
   ASSERT_EQ(got.F, seen.F);
   ASSERT_TRUE(got.V.allFinite()) << c.name;
-  // The filter turns the welded view (core/welded_view.h) about its centroid; each copy follows.
+  // The filter turns the welded view (core/geometry/welded_view.h) about its centroid; each copy follows.
   const WeldedView view = weld_coincident(seen);
   const Surface posed{view.positions_to_input(seen.V, apply_orientation(view.surface, expected.rotation).V), seen.F};
   const double size = std::max(1.0, seen.V.cwiseAbs().maxCoeff());
@@ -307,7 +307,7 @@ TEST(PluginLayers, DeletedButNotCompactedElementsAreSkipped) {
   MeshModel* m = test::add_layer(md, t, "arch");
   vcg::tri::Allocator<CMeshO>::DeleteFace(m->cm, m->cm.face[3]);
   vcg::tri::Allocator<CMeshO>::DeleteVertex(m->cm, m->cm.vert.back());
-  const Surface live = vcgx::to_surface(m->cm);
+  const Surface live = vcg_adapters::to_surface(m->cm);
   ASSERT_EQ(live.F.rows(), t.F.rows() - 1);
   ASSERT_EQ(live.V.rows(), t.V.rows() - 1);
 
@@ -329,5 +329,5 @@ TEST(PluginLayers, DeletedButNotCompactedElementsAreSkipped) {
   ASSERT_NE(out, m);
   EXPECT_EQ(out->cm.fn, m->cm.fn);
   EXPECT_EQ(out->cm.vn, m->cm.vn);
-  EXPECT_LT(analyse_overhang(vcgx::to_surface(out->cm)).risky_area, analyse_overhang(live).risky_area);
+  EXPECT_LT(analyse_overhang(vcg_adapters::to_surface(out->cm)).risky_area, analyse_overhang(live).risky_area);
 }

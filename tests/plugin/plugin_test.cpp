@@ -3,8 +3,8 @@
 
 #include <QJsonObject>
 
-#include "core/orientation.h"
-#include "core/overhang.h"
+#include "core/orientation/orientation.h"
+#include "core/print/overhang.h"
 #include "filter_checks.h"
 #include "harness.h"
 #include "support/shapes.h"
@@ -43,7 +43,7 @@ TEST(Plugin, OverhangAnalysisWritesQualityColourAndSelection) {
   RichParameterList params = h.defaults(kOverhang, md);
   ASSERT_TRUE(h.apply(kOverhang, md, params)) << h.lastError().toStdString();
 
-  const OverhangReport expected = analyse_overhang(vcgx::to_surface(m->cm));
+  const OverhangReport expected = analyse_overhang(vcg_adapters::to_surface(m->cm));
   EXPECT_NEAR(expected.risky_area, test::t_shape_arm_underside_area(), 1e-3);
   test::expect_overhang_written(*m, expected);
   EXPECT_TRUE(h.logLines().join("\n").contains("risky area")) << h.logLines().join("\n").toStdString();
@@ -207,7 +207,7 @@ TEST(Plugin, PrintOrientationAddsTheBestPoseAsANewLayer) {
   ASSERT_EQ(md.meshList.size(), 2);
   MeshModel* out = md.mm();
   test::expect_oriented_layer(*input, *out, original, OrientationOptions{}, h.logLines());
-  const Surface got = vcgx::to_surface(out->cm);
+  const Surface got = vcg_adapters::to_surface(out->cm);
   EXPECT_NEAR(got.V.col(2).maxCoeff(), 20.0, 1e-4);  // cap up: the dome's apex on top
   for (const auto& f : out->cm.face) EXPECT_FALSE(f.IsS());  // nothing overhangs cap up
 }
@@ -248,11 +248,11 @@ TEST(Plugin, SupportSlimmingCanOptimizeTheOrientationFirst) {
   ASSERT_EQ(md.meshList.size(), 2);
   EXPECT_EQ(positions(*input), original);
 
-  const Surface seen = vcgx::to_surface(input->cm);
+  const Surface seen = vcg_adapters::to_surface(input->cm);
   OrientationOptions oo;
   oo.plate_tolerance = params.getAbsPerc("plateTolerance");
   const Surface oriented = apply_orientation(seen, optimize_orientation(seen, oo).rotation);
-  const Surface got = vcgx::to_surface(md.mm()->cm);
+  const Surface got = vcg_adapters::to_surface(md.mm()->cm);
   const Eigen::VectorXd moved = (got.V - oriented.V).rowwise().norm();
   EXPECT_GT(moved.maxCoeff(), 0.0);
   EXPECT_LT(moved.maxCoeff(), 0.06 * (seen.V.colwise().maxCoeff() - seen.V.colwise().minCoeff()).norm());

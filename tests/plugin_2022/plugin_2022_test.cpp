@@ -15,9 +15,9 @@
 #include <common/plugins/meshlab_plugin_type.h>
 #include <common/plugins/plugin_manager.h>
 
-#include "core/orientation.h"
-#include "core/support_model.h"
-#include "core/overhang.h"
+#include "core/orientation/orientation.h"
+#include "core/print/overhang.h"
+#include "core/support_model/support_model.h"
 #include "filter_checks.h"
 #include "harness.h"
 #include "meshlab_api.h"
@@ -81,7 +81,7 @@ TEST_F(Plugin2022, OverhangAnalysisMarksTheBunnysRiskyFacesAndMovesNothing) {
 
   OverhangOptions o;
   o.plate_tolerance = params.getAbsPerc("plateTolerance");
-  const OverhangReport expected = analyse_overhang(vcgx::to_surface(m->cm), o);
+  const OverhangReport expected = analyse_overhang(vcg_adapters::to_surface(m->cm), o);
   ASSERT_GT(expected.risky_count, 0);  // the bunny's chin and ears overhang
   EXPECT_EQ(positions(*m), original);
   EXPECT_EQ(md.meshNumber(), 1u);
@@ -204,8 +204,8 @@ TEST_F(Plugin2022, PrintOrientationTurnsTheBunnyIntoItsBestPoseAsANewLayer) {
   const double before = h.outputs().at("support_estimate_before_mm3").toDouble();
   const double after = h.outputs().at("support_estimate_after_mm3").toDouble();
   EXPECT_LT(after, before);
-  EXPECT_NEAR(before, estimate_support(vcgx::to_surface(input->cm)).volume_mm3, 1e-6 * before);
-  EXPECT_NEAR(after, estimate_support(vcgx::to_surface(md.mm()->cm)).volume_mm3, 2e-2 * before);  // float positions
+  EXPECT_NEAR(before, estimate_support(vcg_adapters::to_surface(input->cm)).volume_mm3, 1e-6 * before);
+  EXPECT_NEAR(after, estimate_support(vcg_adapters::to_surface(md.mm()->cm)).volume_mm3, 2e-2 * before);  // float positions
 }
 
 TEST_F(Plugin2022, PrintOrientationRefusesBadSettingsAndAddsNothing) {

@@ -18,7 +18,7 @@
 
 #include <Eigen/Core>
 
-#include "core/surface.h"
+#include "core/geometry/surface.h"
 
 namespace slim::test {
 

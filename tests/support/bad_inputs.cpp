@@ -8,8 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/overhang.h"
-#include "core/welded_view.h"
+#include "core/geometry/welded_view.h"
+#include "core/print/overhang.h"
 #include "support/shapes.h"
 
 namespace slim::test {

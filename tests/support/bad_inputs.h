@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "core/orientation.h"
-#include "core/slimming.h"
-#include "core/surface.h"
+#include "core/geometry/surface.h"
+#include "core/optimizer/slimming.h"
+#include "core/orientation/orientation.h"
 
 namespace slim::test {
 
@@ -69,7 +69,7 @@ std::string slimming_result_problem(const Surface& input, const SlimmingOptions&
 void write_ascii_ply(const std::string& path, const Surface& s);
 
 // What Print Orientation at its Fast effort should do with `s` at `alpha_max_deg`, by the core
-// (on the welded view, core/welded_view.h, as the filter computes): its result; when the core refuses, a default result and the refusal (std::invalid_argument's
+// (on the welded view, core/geometry/welded_view.h, as the filter computes): its result; when the core refuses, a default result and the refusal (std::invalid_argument's
 // message) in `refusal`, which is empty otherwise.
 OrientationResult fast_orientation(const Surface& s, double alpha_max_deg, std::string& refusal);
 

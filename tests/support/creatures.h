@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/surface.h"
+#include "core/geometry/surface.h"
 
 namespace slim::test {
 

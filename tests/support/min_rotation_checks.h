@@ -1,4 +1,4 @@
-// Checks every minimal rotation must pass (core/min_rotation.h), shared by the min_rotation tests:
+// Checks every minimal rotation must pass (core/rotation/min_rotation.h), shared by the min_rotation tests:
 // header-only, for test executables that link GoogleTest.
 //   expect_well_formed(r, d)          a proper rotation turning r.closest onto d, the angle and axis
 //                                     consistent; the identity when not feasible
@@ -12,7 +12,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
-#include "core/min_rotation.h"
+#include "core/rotation/min_rotation.h"
 
 namespace slim::test {
 

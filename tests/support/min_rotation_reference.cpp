@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "core/min_rotation.h"
+#include "core/rotation/min_rotation.h"
 
 namespace slim::test {
 

@@ -188,9 +188,9 @@ std::string sample_bunny_path() { return data_dir() + "/bunny.ply"; }
 }  // namespace slim::test
 
 #ifdef SLIM_TESTS_HAVE_VCG
-#include "vcg_adapters/mesh_io.h"
+#include "mesh_io/mesh_io.h"
 namespace slim::test {
-Surface load_mesh(const std::string& path) { return vcgx::load_surface(path); }
+Surface load_mesh(const std::string& path) { return io::load_surface(path); }
 const Surface& sample_bunny() {
   static const Surface s = load_mesh(sample_bunny_path());
   return s;

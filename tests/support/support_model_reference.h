@@ -1,11 +1,11 @@
-// Brute-force references for the support model (core/support_raster.h, core/support_sweep.h),
+// Brute-force references for the support model (core/support_model/support_raster.h, core/support_model/support_sweep.h),
 // for small inputs: every ray against every face, every pixel and layer as a plain 3D array.
 #pragma once
 
 #include <vector>
 
-#include "core/support_raster.h"
-#include "core/support_sweep.h"
+#include "core/support_model/support_raster.h"
+#include "core/support_model/support_sweep.h"
 
 namespace slim::test {
 

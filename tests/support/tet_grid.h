@@ -1,11 +1,11 @@
 // A structured box of tetrahedra for tests and benchmarks only (the real domain is
-// core/voxel_domain.h). Every cube is split into the 6 Kuhn tets along its 000-111 diagonal;
+// core/domain/voxel_domain.h). Every cube is split into the 6 Kuhn tets along its 000-111 diagonal;
 // all cubes use the same split, so neighbouring cubes share faces exactly (a conforming mesh).
 #pragma once
 
 #include <vector>
 
-#include "core/tet_mesh.h"
+#include "core/geometry/tet_mesh.h"
 
 namespace slim::test {
 

@@ -1,0 +1,221 @@
+#include "core/optimizer/slimmer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "core/optimizer/coherence.h"
+#include "core/optimizer/step_guards.h"
+
+namespace slim {
+
+namespace {
+
+constexpr double kFeatureWeight = 50.0;  // rigid-feature tets dominate the global step
+
+// Adds the time of a scope to a counter.
+class ScopedSeconds {
+ public:
+  explicit ScopedSeconds(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedSeconds() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+std::string gigabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g GB", bytes / 1e9);
+  return text;
+}
+
+// The memory guard for the optimizer: the voxel domain's own guard (voxel_budget.h) only covers
+// the domain, and the optimizer needs several times more. Refuse before allocating it.
+void require_optimizer_memory(const TetMesh& domain, const SlimmingOptions& o) {
+  const double needed = optimizer_bytes(domain.T.rows(), domain.V.rows());
+  if (!(o.max_memory_bytes > 0.0 && needed > o.max_memory_bytes)) return;
+  std::string msg = "the optimizer would need about " + gigabytes(needed) + " for this domain (" +
+                    std::to_string(domain.T.rows()) + " tets), more than the memory budget of " +
+                    gigabytes(o.max_memory_bytes) + " allows; ";
+  if (o.domain == DomainKind::Voxel) {
+    // Tets grow like the cube of the resolution, the factor somewhat faster.
+    const int fitting = std::max(1, static_cast<int>(o.resolution * std::cbrt(o.max_memory_bytes / needed) * 0.9));
+    msg += "use a voxel resolution of at most " + std::to_string(fitting);
+  } else {
+    msg += "use the voxel domain, or a coarser mesh";
+  }
+  throw std::invalid_argument(msg);
+}
+
+}  // namespace
+
+double deviation_budget(const SlimmingOptions& o, double diag) {
+  if (o.max_deviation_mm > 0.0) return o.max_deviation_mm;
+  return o.max_deviation_pct > 0.0 ? o.max_deviation_pct / 100.0 * diag : HUGE_VAL;
+}
+
+double optimizer_bytes(Eigen::Index tets, Eigen::Index vertices) {
+  return 700.0 * static_cast<double>(tets) + 100.0 * std::pow(static_cast<double>(vertices), 4.0 / 3.0);
+}
+
+SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domain, const OverhangReport& before,
+                               const SlimmingOptions& o, const std::function<void(double, const std::string&)>& report)
+    : input_(input.get()),
+      options_(o),
+      coherence_(coherence_of(o)),
+      domain_(std::move(domain)),
+      current_(input_),
+      current_view_(input.derived(current_)),
+      overhang_(before),
+      displacement_(Eigen::VectorXd::Zero(input_.V.rows())) {
+  const TetMesh& mesh = domain_.mesh;
+  require_optimizer_memory(mesh, o);
+  const Eigen::Vector3d d = unit_print_direction(o.print_direction);
+  const double diag = (input_.V.colwise().maxCoeff() - input_.V.colwise().minCoeff()).norm();
+  measure_.print_direction = d;
+  measure_.alpha_max_deg = o.alpha_max_deg;
+  measure_.plate_tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * diag;
+
+  const Points n0 = face_normals(input_);
+  local_.set_rest(mesh);
+  local_.pieces = constraint_pieces(domain_.embedding, mesh.T.rows(), before.on_plate, n0);
+  local_.d = d;
+  local_.tau = std::sin(std::max(0.0, o.alpha_max_deg - margin_of(o)) * M_PI / 180.0);
+  local_.max_step = max_step_of(o) * M_PI / 180.0;
+  local_.edge_slack = coherence_.edge_turn_slack_deg * M_PI / 180.0;
+  local_.proxies.max_k = o.max_k;
+  {
+    ScopedSeconds timer(times_.local);  // the local step's input
+    TieDirections ties = tie_directions(input_, mesh, local_.pieces, n0, before.risky, d, diag, coherence_);
+    local_.tie = std::move(ties.tie);
+    local_.edge_axis = std::move(ties.edge_axis);
+  }
+  local_.rest_normals = n0;
+  features_ = std::make_unique<RigidFeatures>(input_, o.rigid_features, domain_.embedding, mesh);
+  local_.skip = features_->tet_flags();
+
+  report(0.05, "factoring the global step");
+  factor_global_step(before);
+  state_ = local_.make_state();
+  V_ = mesh.V;
+  budget_ = deviation_budget(o, diag);
+  for (const auto& tet_pieces : local_.pieces)
+    for (const auto& pc : tet_pieces) piece_area_ += pc.second;  // AE is a share of this area
+  plate_ = (mesh.V * d).minCoeff();
+  volume_target_ = signed_volume(input_);
+  if (coherence_.keep_volume) volume_ = std::make_unique<VolumeKeeping>(domain_.embedding, input_.F, mesh.V.rows());
+}
+
+// Weights: the rest volumes (the paper), with the coherent factors and the features' weight;
+// the plate vertices held; a part that does not touch the plate stays where it is.
+void SupportSlimmer::factor_global_step(const OverhangReport& before) {
+  const TetMesh& mesh = domain_.mesh;
+  const int nt = static_cast<int>(mesh.T.rows());
+  weights_.resize(nt);
+  for (int t = 0; t < nt; ++t) {
+    const auto& pieces = local_.pieces[static_cast<size_t>(t)];
+    weights_(t) = tet_volume(mesh.V, mesh.T.row(t));
+    if (pieces.empty()) weights_(t) *= coherence_.interior_weight;
+    const bool risky = std::any_of(pieces.begin(), pieces.end(), [&](const auto& pc) { return before.risky[static_cast<size_t>(pc.first)]; });
+    if (risky) weights_(t) *= coherence_.risky_boost;
+    if (features_->tet_feature()[static_cast<size_t>(t)] >= 0) weights_(t) *= kFeatureWeight;
+  }
+  std::vector<int> pinned;
+  for (Eigen::Index v = 0; v < domain_.on_plate.size(); ++v)
+    if (domain_.on_plate(v)) pinned.push_back(static_cast<int>(v));
+  ArapOptions ao;
+  ao.anchor_floating_components = true;
+  {
+    ScopedSeconds timer(times_.factorization);
+    arap_ = std::make_unique<ArapSolver>(mesh, weights_, pinned, ao);
+  }
+  if (coherence_.smoothing > 0.0 || coherence_.propagation > 0.0) {
+    std::vector<bool> holds_faces(static_cast<size_t>(nt));
+    for (int t = 0; t < nt; ++t) holds_faces[static_cast<size_t>(t)] = !local_.pieces[static_cast<size_t>(t)].empty();
+    neighbours_ = tet_neighbours(mesh.T, mesh.V.rows(), holds_faces);
+  }
+}
+
+IterationStats SupportSlimmer::step() {
+  guard_stop_.clear();
+  {
+    ScopedSeconds timer(times_.local);
+    local_.run(V_, state_);
+    blend_rotations(neighbours_, local_.skip, coherence_.smoothing, coherence_.propagation, state_);
+    features_->fit(V_, weights_, local_, state_);
+  }
+  Points proposed;
+  {
+    ScopedSeconds timer(times_.global);
+    if (volume_) {
+      Points response;
+      proposed = arap_->solve_with_response(state_.L, domain_.mesh.V, volume_->load(V_), response);
+      volume_->keep(volume_target_, response, proposed);
+    } else {
+      proposed = arap_->solve(state_.L, domain_.mesh.V);
+    }
+  }
+  ScopedSeconds timer(times_.measure);
+  const Points solved = proposed;  // the global step's own minimiser, before the guards move it
+  int held_back = 0, features_held = 0;
+  bool inversion_cut = false;
+  const bool guarded = guard(proposed, held_back, features_held, inversion_cut);
+  IterationStats stats = measure(solved, proposed, guarded, inversion_cut, held_back);
+  stats.features_held = features_held;
+  V_ = std::move(proposed);
+  return stats;
+}
+
+bool SupportSlimmer::guard(Points& proposed, int& held_back, int& features_held, bool& inversion_cut) {
+  const Tets& T = domain_.mesh.T;
+  bool guarded = keep_above_plate(proposed, measure_.print_direction, plate_);
+  if (std::isfinite(budget_)) {
+    const BudgetGuard budget = keep_within_budget(domain_.mesh.V, V_, proposed, budget_, features_->vertex_feature());
+    guarded = guarded || budget.moved();
+    features_held = budget.groups_held;
+  }
+  const std::vector<int> probe = inverted_tets(proposed, T);
+  if (probe.empty()) return guarded;
+  if (coherence_.local_inversion_guard &&
+      roll_back_inverting(V_, proposed, T, features_->vertex_feature(), probe, held_back))
+    return true;
+  cut_back_to_valid(V_, proposed, T, probe);
+  inversion_cut = true;
+  guard_stop_ = "a tetrahedron would have inverted (step cut back)";
+  return true;
+}
+
+IterationStats SupportSlimmer::measure(const Points& solved, const Points& accepted, bool guarded, bool inversion_cut,
+                                       int held_back) {
+  embedded_positions(domain_.embedding, accepted, current_.V);
+  displacement_ = (current_.V - input_.V).rowwise().norm();
+  overhang_ = analyse_overhang(current_view_, measure_);
+  IterationStats st;
+  st.risky_area = overhang_.risky_area;
+  st.risky_share = overhang_.risky_share();
+  st.risky_deficit = overhang_.risky_deficit;
+  st.shadow_volume = overhang_.shadow_volume;
+  // One pass over the tets for the energies of the start, the minimiser and the guarded result.
+  const Eigen::VectorXd energies = arap_->energies(
+      guarded ? std::vector<const Points*>{&V_, &solved, &accepted} : std::vector<const Points*>{&V_, &solved}, state_.L);
+  st.energy_start = energies(0);
+  st.energy_solved = energies(1);
+  st.energy = guarded ? energies(2) : energies(1);
+  double ae = 0.0;
+  for (size_t t = 0; t < state_.ae_area.size(); ++t) {
+    ae += state_.ae_area[t];
+    if (state_.risky_area[t] > 0.0) ++st.risky_tets;
+  }
+  // Zero unless the guard cut a step whose start was already inverted.
+  st.inverted_tets = inversion_cut ? static_cast<int>(inverted_tets(accepted, domain_.mesh.T).size()) : 0;
+  st.held_back_vertices = held_back;
+  st.approximation_error = piece_area_ > 0.0 ? ae / piece_area_ : 0.0;
+  st.max_displacement = displacement_.maxCoeff();
+  st.mean_displacement = displacement_.mean();
+  return st;
+}
+
+}  // namespace slim
