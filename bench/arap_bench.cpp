@@ -1,5 +1,5 @@
 // The global step and the local step's polar decomposition on box grids of about 1k, 10k and
-// 50k vertices (the 50k grid has 280k tets). Issue 5's targets: 50k setup <= 1.5 s and a whole
+// 50k vertices (the 50k grid has 280k tets). The speed targets: 50k setup <= 1.5 s and a whole
 // iteration <= 80 ms; 10k: setup plus 50 iterations <= 1 s.
 //
 //   build-*/bench/arap_bench --benchmark_counters_tabular=true

@@ -3,14 +3,14 @@
 # in MeshLab (Subdivision Surfaces: Midpoint through meshlabserver: 1,114,656 faces, positions
 # stored as floats, so the faces of one plane differ in their normals by 1e-7 to 1e-5), then
 # `support-slim IN -o OUT --report R --quiet` at the defaults (read, slim, every figure, write).
-# Issue 15's speed target: a 1.2M-face input, the bunny refined twice, end to end in at most 5 s.
+# The speed target: a 1.2M-face input, the bunny refined twice, end to end in at most 5 s.
 #
 #   bench/large_mesh.sh [--runs N] [--build DIR] [--out DIR]
 #
 # Prints each run's wall seconds and peak memory (GNU time), then their medians. The mesh is made
 # once into OUT (default out/large-mesh) and kept. Needs scripts/setup.sh's MeshLab and
-# scripts/corpus.sh's corpus (made here when missing) and a build (default build/). For a paired
-# comparison of two builds, farm-bench runs the printed command against the other build's.
+# eval/run.sh corpus's corpus (made here when missing) and a build (default build/). For a paired
+# comparison of two builds, run the printed command against each build's support-slim in turn.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 runs=5 build="$repo/build" out="$repo/out/large-mesh"
@@ -19,7 +19,7 @@ while [ $# -gt 0 ]; do
     --runs) runs="$2"; shift 2 ;;
     --build) build="$(cd "$2" && pwd)"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
-    -h|--help) sed -n 2,15p "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n 2,13p "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "large_mesh: unknown argument $1" >&2; exit 1 ;;
   esac
 done
@@ -28,7 +28,7 @@ cli="$build/cli/support-slim"
 [ -x "$cli" ] || die "no $cli: build first (scripts/build.sh)"
 command -v meshlabserver >/dev/null 2>&1 || die "meshlabserver is missing: run scripts/setup.sh"
 [ -x /usr/bin/time ] || die "GNU time is missing (apt-get install time)"
-[ -f "$repo/data/corpus/bunny_70k.ply" ] || "$repo/scripts/corpus.sh" --build "$build" >/dev/null
+[ -f "$repo/data/corpus/bunny_70k.ply" ] || "$repo/eval/studies/corpus.sh" --build "$build" >/dev/null
 mkdir -p "$out"
 mesh="$out/bunny_meshlab_2x.ply"
 if [ ! -f "$mesh" ]; then

@@ -14,16 +14,16 @@ using namespace slim;
 
 int main(int argc, char** argv) {
   SlimmingOptions base;
-  base.max_iterations = 200;
+  base.steps.max_iterations = 200;
   std::vector<double> budgets{1, 2, 3, 5, 10};
   std::string only;  // --shape NAME: that shape alone
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
-    if (a == "--angle") base.alpha_max_deg = std::stod(v);
+    if (a == "--angle") base.print.alpha_max_deg = std::stod(v);
     else if (a == "--resolution") base.resolution = std::stoi(v);
-    else if (a == "--iterations") base.max_iterations = std::stoi(v);
-    else if (a == "--stall") base.stall_tolerance = std::stod(v);
-    else if (a == "--step") base.max_step_deg = std::stod(v);
+    else if (a == "--iterations") base.steps.max_iterations = std::stoi(v);
+    else if (a == "--stall") base.steps.stall_tolerance = std::stod(v);
+    else if (a == "--step") base.steps.max_step_deg = std::stod(v);
     else if (a == "--shape") only = v;
     else if (a == "--budgets") {
       budgets.clear();
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
       {"arch", test::refined(test::arch(), 3)}};
   std::printf("alpha_max %.0f deg, resolution %d; cells: risky-area reduction %%, shadow-volume reduction %% "
               "(iterations, inverted tets)\n",
-              base.alpha_max_deg, base.resolution);
+              base.print.alpha_max_deg, base.resolution);
   std::printf("%-9s %-9s", "shape", "method");
   for (double b : budgets) std::printf(" | %5.1f%% budget             ", b);
   std::printf("\n");
@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
       for (double b : budgets) {
         SlimmingOptions o = base;
         o.method = method;
-        o.max_deviation_pct = b;
+        o.budget = DeviationBudget::from_percent(b);
         const SlimmingResult r = slim_supports(mesh, o);
         const double cut = r.before.risky_area > 0 ? 100.0 * (1.0 - r.after.risky_area / r.before.risky_area) : 0.0;
         const double shadow_cut =

@@ -7,8 +7,8 @@
 // share a normal (to the last bits), which the local step merges; a scan has no such faces:
 // --jitter MM moves every vertex of the refined bunny by up to MM (a fixed seed), so none do.
 // --mesh PATH: the end-to-end run refines that mesh instead (data/corpus/bunny_70k.ply refined
-// twice: the 1,114,656-face bunny of issue 15's target); --skip-stages leaves out the three small
-// resolutions.
+// twice: the 1,114,656-face bunny of the large-mesh speed target); --skip-stages leaves out the
+// three small resolutions.
 //   slimming_stages [--runs N] [--iterations N] [--end-to-end FACES] [--jitter MM] [--mesh PATH]
 //                   [--skip-stages 1]
 #include <algorithm>
@@ -98,10 +98,10 @@ int main(int argc, char** argv) {
     for (int k = 0; k < runs; ++k) {
       SlimmingOptions o;
       o.resolution = resolution;
-      o.max_iterations = iterations;
-      o.max_deviation_pct = 0.0;
-      o.stall_tolerance = -1e300;  // run every iteration
-      o.coherence.resolution_ladder.clear();  // this resolution alone: stage times add up over rungs
+      o.steps.max_iterations = iterations;
+      o.budget = DeviationBudget::from_percent(0.0);
+      o.steps.stall_tolerance = -1e300;  // run every iteration
+      o.ladder.multiples.clear();  // this resolution alone: stage times add up over rungs
       const auto t0 = std::chrono::steady_clock::now();
       r = slim_supports(bunny, o);
       total.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());

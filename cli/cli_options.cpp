@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace slim::cli {
@@ -31,7 +32,7 @@ options:
   --resolution N           voxel cells along the longest side                      [24]
                            (coherent: also 4/3 and 2 x N for parts up to 300,000 faces;
                            the result the support model prefers is kept)
-  --one-resolution         slim at --resolution alone: no 4/3 and 2 x N (3-5x faster)
+  --one-resolution         slim at --resolution alone: no 4/3 and 2 x N (several times faster)
   --domain voxel|tetgen    the tetrahedral domain                               [voxel]
   --method coherent|paper  coherent (default) or the paper's method as written [coherent]
   --iterations N           iteration limit; 0 embeds and writes back only          [40]
@@ -73,6 +74,9 @@ int integer(const std::string& flag, const std::string& text) {
   if (v != std::floor(v) || std::abs(v) > 1e9) die(flag + " expects a whole number, got '" + text + "'");
   return static_cast<int>(v);
 }
+
+// The crease limit as the CLI and the dialog give it: a percentage, 0 for no limit.
+std::optional<double> crease_limit(double pct) { return pct == 0.0 ? std::nullopt : std::optional<double>(pct); }
 
 Eigen::Vector3d vector3(const std::string& flag, const std::string& text) {
   std::stringstream ss(text);
@@ -119,11 +123,11 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
       std::cout << kUsage;
       std::exit(0);
     } else if (a == "-o" || a == "--output") c.out = value(i);
-    else if (a == "--angle") o.alpha_max_deg = number(a, value(i));
-    else if (a == "--dir") o.print_direction = vector3(a, value(i)), dir_given = true;
-    else if (a == "--plate-tolerance") o.plate_tolerance = number(a, value(i));
+    else if (a == "--angle") o.print.alpha_max_deg = number(a, value(i));
+    else if (a == "--dir") o.print.direction = vector3(a, value(i)), dir_given = true;
+    else if (a == "--plate-tolerance") o.print.plate = PlateRule::within(number(a, value(i)));
     else if (a == "--resolution") o.resolution = integer(a, value(i));
-    else if (a == "--one-resolution") o.coherence.resolution_ladder.clear();
+    else if (a == "--one-resolution") o.ladder.multiples.clear();
     else if (a == "--domain") {
       const std::string& v = value(i);
       if (v == "voxel") o.domain = DomainKind::Voxel;
@@ -134,11 +138,11 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
       if (v == "coherent") o.method = SlimmingMethod::Coherent;
       else if (v == "paper") o.method = SlimmingMethod::Paper;
       else die("--method expects coherent or paper, got '" + v + "'");
-    } else if (a == "--iterations") o.max_iterations = integer(a, value(i));
-    else if (a == "--max-deviation") o.max_deviation_pct = number(a, value(i));
-    else if (a == "--max-k") o.max_k = integer(a, value(i));
-    else if (a == "--max-creases") o.coherence.max_crease_share_pct = number(a, value(i)), creases_given = true;
-    else if (a == "--min-saving") o.coherence.min_support_saving_pct = number(a, value(i)), saving_given = true;
+    } else if (a == "--iterations") o.steps.max_iterations = integer(a, value(i));
+    else if (a == "--max-deviation") o.budget = DeviationBudget::from_percent(number(a, value(i)));
+    else if (a == "--max-k") o.steps.max_k = integer(a, value(i));
+    else if (a == "--max-creases") o.result.max_crease_share_pct = crease_limit(number(a, value(i))), creases_given = true;
+    else if (a == "--min-saving") o.result.min_support_saving_pct = number(a, value(i)), saving_given = true;
     else if (a == "--features") c.features_file = value(i);
     else if (a == "--features-from-mesh") c.features_from_mesh = true;
     else if (a == "--orient") c.orient = true;

@@ -52,9 +52,9 @@ void print_orientation(const OrientationResult& orientation, const SlimmingResul
   const double turn = std::acos(std::clamp(best.direction.z(), -1.0, 1.0)) * 180.0 / M_PI;
   std::printf("  orientation     print direction (%.4f, %.4f, %.4f) of the input, turned %.1f deg; %d directions in %.2f s\n",
               best.direction.x(), best.direction.y(), best.direction.z(), turn, orientation.candidates, orientation.seconds);
-  if (orientation.as_given.support_estimate >= 0.0 && best.support_estimate >= 0.0)
+  if (orientation.as_given.support_estimate && best.support_estimate)
     std::printf("  support model   %.6g (as given) -> %.6g (oriented) mm^3, the support model's choice of pose\n",
-                orientation.as_given.support_estimate, best.support_estimate);
+                *orientation.as_given.support_estimate, *best.support_estimate);
   std::printf("  support proxy   %.6g (as given) -> %.6g (oriented) -> %.6g (slimmed) mm^3\n",
               orientation.as_given.shadow_volume, r.before.shadow_volume, r.after.shadow_volume);
   std::printf("  risky area      %.6g (as given) -> %.6g (oriented) mm^2\n", orientation.as_given.risky_area, r.before.risky_area);

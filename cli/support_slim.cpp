@@ -2,6 +2,7 @@
 // core, save, summarise. Exits 0 on success, 1 with a one-line reason otherwise.
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,22 +28,16 @@ bool print_progress(double fraction, const std::string& message) {
 // Orientation first (--orient): the part turns rigidly into its print pose and is slimmed there,
 // so the slimming's displacement and volume figures count the deformation alone.
 OrientedSlimming run_job(const cli::CliOptions& c, const io::MeshFile& file, const WeldedView& view) {
-  OrientedSlimming job;
-  if (!c.orient) {
-    job.slimming = slim_supports(view.surface, c.slimming);
-    job.posed = view.surface;
-    return job;
-  }
-  if (!c.quiet) std::fprintf(stderr, "[orient] searching the print direction\n");
-  job = slim_in_best_pose(view.surface, c.slimming, with_effort(c.effort));
+  if (c.orient && !c.quiet) std::fprintf(stderr, "[orient] searching the print direction\n");
+  const std::optional<OrientationOptions> orientation =
+      c.orient ? std::optional<OrientationOptions>(with_effort(c.effort)) : std::nullopt;
+  OrientedSlimming job = slim_as_asked(view.surface, c.slimming, orientation);
   if (!c.oriented_out.empty()) {
-    const OverhangReport pose = print_pose_overhang(job.posed, job.orientation, c.slimming.alpha_max_deg);
+    const OverhangReport pose = print_pose_overhang(job.posed, job.orientation, c.slimming.print.alpha_max_deg);
     io::write_mesh(c.oriented_out, file, view.positions_to_input(file.surface.V, job.posed.V), {pose.quality, pose.risky});
   }
   return job;
 }
-
-double bbox_diagonal(const Surface& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
 
 // A report that could not be written would be found missing only after the run and after OUT was
 // written: its folder is checked first.
@@ -73,7 +68,7 @@ int main(int argc, char** argv) {
     // The files get the input's own vertex list back, moved as the welded view moved.
     io::write_mesh(c.out, file, view.positions_to_input(file.surface.V, r.surface.V), {r.after.quality, r.after.risky});
     cli::RunReport run{c.in, c.out, c.orient, &file, &view, &job, {}};
-    run.figures = slimming_figures(job.posed, r, bbox_diagonal(view.surface));
+    run.figures = slimming_figures(job.posed, r, bbox_diagonal(view.surface.V));
     cli::print_summary(run);
     if (!c.report.empty()) cli::write_report(c.report, run);
   } catch (const std::exception& e) {

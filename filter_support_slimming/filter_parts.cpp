@@ -23,12 +23,12 @@ void add_print_parameters(const MeshModel& m, RichParameterList& par) {
                                          "risky."));
 }
 
-slim::OverhangOptions overhang_options(const RichParameterList& par) {
-  slim::OverhangOptions o;
+slim::PrintSetup print_setup(const RichParameterList& par) {
+  slim::PrintSetup o;
   const auto d = par.getPoint3m("printDirection");
-  o.print_direction = Eigen::Vector3d(d[0], d[1], d[2]);
+  o.direction = Eigen::Vector3d(d[0], d[1], d[2]);
   o.alpha_max_deg = par.getFloat("alphaMax");
-  o.plate_tolerance = par.getAbsPerc("plateTolerance");
+  o.plate = slim::PlateRule::within(par.getAbsPerc("plateTolerance"));
   return o;
 }
 
@@ -36,16 +36,13 @@ slim::OverhangOptions overhang_options(const RichParameterList& par) {
 // is wrong in words the log can show.
 slim::SlimmingOptions slimming_options(const RichParameterList& par) {
   slim::SlimmingOptions o;
-  const slim::OverhangOptions overhang = overhang_options(par);
-  o.print_direction = overhang.print_direction;
-  o.alpha_max_deg = overhang.alpha_max_deg;
-  o.plate_tolerance = overhang.plate_tolerance;
+  o.print = print_setup(par);
   o.resolution = par.getInt("resolution");
   o.domain = par.getEnum("domain") == 1 ? slim::DomainKind::TetGen : slim::DomainKind::Voxel;
   o.method = par.getEnum("method") == 1 ? slim::SlimmingMethod::Paper : slim::SlimmingMethod::Coherent;
-  o.max_iterations = par.getInt("maxIterations");
-  o.max_deviation_pct = par.getFloat("maxDeviation");
-  o.max_k = par.getInt("maxK");
+  o.steps.max_iterations = par.getInt("maxIterations");
+  o.budget = slim::DeviationBudget::from_percent(par.getFloat("maxDeviation"));
+  o.steps.max_k = par.getInt("maxK");
   return o;
 }
 
@@ -82,10 +79,10 @@ void log_orientation(const FilterRun& run, const QString& filter, const slim::Or
                         ": print direction (%.4f, %.4f, %.4f) of the input, turned %.1f deg onto +Z; %d directions "
                         "searched in %.2f s",
                         best.direction.x(), best.direction.y(), best.direction.z(), turn, r.candidates, r.seconds));
-  if (given.support_estimate >= 0.0 && best.support_estimate >= 0.0)
+  if (given.support_estimate && best.support_estimate)
     run.info(filter + QString::asprintf(": support %.6g -> %.6g mm^3 (the support model's estimate of a slicer's "
                                         "support, which chose the pose among the best by score)",
-                                        given.support_estimate, best.support_estimate));
+                                        *given.support_estimate, *best.support_estimate));
   run.info(filter + QString::asprintf(
                         ": support proxy (shadow volume: risky faces' footprint x height above the plate) %.6g -> "
                         "%.6g mm^3; risky area %.6g -> %.6g mm^2; plate contact %.6g -> %.6g mm^2",

@@ -37,7 +37,7 @@ void apply_print_orientation(MeshDocument& md, const RichParameterList& par, Fil
 void add_alpha_max_parameter(RichParameterList& par);
 // Print direction, alpha_max and the build plate tolerance (fitted to m's size).
 void add_print_parameters(const MeshModel& m, RichParameterList& par);
-slim::OverhangOptions overhang_options(const RichParameterList& par);
+slim::PrintSetup print_setup(const RichParameterList& par);
 // The filter's parameters -> the core's options. Ranges are checked by the core, which says what
 // is wrong in words the log can show.
 slim::SlimmingOptions slimming_options(const RichParameterList& par);

@@ -35,7 +35,7 @@ void apply_overhang_analysis(MeshDocument& md, const RichParameterList& par, Fil
   const slim::EdgeTopology edges = slim::edge_topology(layer.view.surface);
   const bool insideOut = slim::inside_out(layer.view.surface, edges);
   const slim::OverhangReport report = layer.run([&](const slim::Surface& s) {
-    return slim::analyse_overhang(insideOut ? slim::flipped(s) : s, overhang_options(par));
+    return slim::analyse_overhang(insideOut ? slim::flipped(s) : s, print_setup(par));
   });
 
   // Only now that the analysis succeeded is the layer touched.

@@ -46,8 +46,9 @@ void apply_print_orientation(MeshDocument& md, const RichParameterList& par, Fil
   run.outputs["shadow_volume_after"] = r.best.shadow_volume;
   run.outputs["risky_area_before"] = r.as_given.risky_area;
   run.outputs["risky_area_after"] = r.best.risky_area;
-  run.outputs["support_estimate_before_mm3"] = r.as_given.support_estimate;  // -1: not judged
-  run.outputs["support_estimate_after_mm3"] = r.best.support_estimate;
+  // The outputs are numbers: -1 where the support model did not judge the pose.
+  run.outputs["support_estimate_before_mm3"] = r.as_given.support_estimate.value_or(-1.0);
+  run.outputs["support_estimate_after_mm3"] = r.best.support_estimate.value_or(-1.0);
 }
 
 }  // namespace slim::plugin

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/optimizer/resolution_ladder.h"
 #include "core/optimizer/slimming_figures.h"
@@ -41,14 +42,14 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
                         "towards their nearest edge, the volume is kept, and the result is the iterate that needs the "
                         "least support as a slicer builds it (estimated; the log gives the figure). Paper: <i>Direct Computation of Minimal Rotation for Support "
                         "Slimming</i> as written, for comparison."));
-  par.addParam(RichInt("maxIterations", defaults.max_iterations, "Max iterations",
+  par.addParam(RichInt("maxIterations", defaults.steps.max_iterations, "Max iterations",
                        "The largest number of local/global iterations; the run ends sooner when the risky area "
                        "stops falling. 0 only embeds the mesh and writes it back."));
-  par.addParam(RichFloat("maxDeviation", float(defaults.max_deviation_pct), "Deviation budget (%)",
+  par.addParam(RichFloat("maxDeviation", float(defaults.budget.share_percent().value_or(0.0)), "Deviation budget (%)",
                          "The farthest any vertex may move, as a percentage of the bounding box diagonal. It is a "
                          "constraint, not a stopping rule: the part of a step that would take a vertex further is "
                          "rolled back, and the run goes on. 0: no budget."));
-  par.addParam(RichInt("maxK", defaults.max_k, "Max proxies per tetrahedron",
+  par.addParam(RichInt("maxK", defaults.steps.max_k, "Max proxies per tetrahedron",
                        "When no single rotation can make every face in a tetrahedron self-supporting, its faces "
                        "are clustered into at most this many proxy normals (area-weighted K-means)."));
   par.addParam(RichBool("preserveSelection", false, "Preserve selection as rigid features",
@@ -63,8 +64,6 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
 }
 
 namespace {
-
-double bbox_diagonal(const slim::Surface& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
 
 // The run's figures in the log, and every one of them in the outputs (slimming_figures.h's names;
 // the first four keys are those of earlier releases, kept for scripts that read them).
@@ -133,21 +132,17 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   // With the orientation first, the part turns rigidly into its print pose and is slimmed there,
   // so the displacement and the volume change are the deformation's alone.
   const bool orient = par.getBool("optimizeOrientation");
-  const slim::OrientedSlimming job = layer.run([&](const slim::Surface& surface) {
-    if (orient) return slim::slim_in_best_pose(surface, options, orientation_options(par.getFloat("alphaMax"), 1));
-    slim::OrientedSlimming slimmed;
-    slimmed.slimming = slim::slim_supports(surface, options);
-    slimmed.posed = surface;
-    return slimmed;
-  });
+  const std::optional<slim::OrientationOptions> orientation =
+      orient ? std::optional<slim::OrientationOptions>(orientation_options(par.getFloat("alphaMax"), 1)) : std::nullopt;
+  const slim::OrientedSlimming job =
+      layer.run([&](const slim::Surface& surface) { return slim::slim_as_asked(surface, options, orientation); });
   const slim::SlimmingResult& r = job.slimming;
-  const slim::OrientationResult& orientation = job.orientation;
   const Eigen::VectorXd displacement = layer.view.to_input(r.displacement);
   add_result_layer(md, input, "slimmed", orient ? ResultFrame::PrintPose : ResultFrame::Input, layer.positions(r.surface.V),
                    r.after.quality, r.after.risky, &displacement);
-  if (orient) log_orientation(run, "Support Slimming", orientation, false);  // slimming notes it below
+  if (orient) log_orientation(run, "Support Slimming", job.orientation, false);  // slimming notes it below
 
-  log_slimming(run, r, slim::slimming_figures(job.posed, r, bbox_diagonal(layer.view.surface)), orient);
+  log_slimming(run, r, slim::slimming_figures(job.posed, r, slim::bbox_diagonal(layer.view.surface.V)), orient);
 }
 
 }  // namespace slim::plugin

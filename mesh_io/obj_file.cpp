@@ -69,6 +69,7 @@ int index(const std::string& path, std::string_view token, long count, const cha
 
 // What read_obj gathers line by line: the records written back, and the surface's lists.
 struct ObjReading {
+  explicit ObjReading(const std::string& file) : path(file) {}
   const std::string& path;
   std::shared_ptr<ObjRecords> records = std::make_shared<ObjRecords>();
   std::vector<Eigen::Vector3d> v;
@@ -174,7 +175,7 @@ struct ObjReading {
 }  // namespace
 
 MeshFile read_obj(const std::string& path, const std::string& bytes) {
-  ObjReading reading{path};
+  ObjReading reading(path);
   size_t at = 0;
   for (long lineno = 1; at < bytes.size(); ++lineno) {
     size_t end = bytes.find('\n', at);

@@ -4,8 +4,9 @@
 # geometry, print, rotation, domain, solver, support_model, optimizer, orientation; the core
 # includes no Qt, VCG or MeshLab header and nothing outside itself; vcg_adapters/ includes only the
 # core, mesh_io/ the core and vcg_adapters/, the CLI the core and mesh_io/, the plugin the core and
-# vcg_adapters/); no function over 80 lines and no file over 400 in the core, the adapters, the
-# CLI and the plugin. Prints each breach as path:line and exits 1 when there is one.
+# vcg_adapters/, eval/ the core, mesh_io/ and vcg_adapters/); no function over 80 lines and no file
+# over 400 in the core, the adapters, the CLI, the plugin and eval/. Prints each breach as
+# path:line and exits 1 when there is one.
 #
 #   scripts/check-structure.sh [ROOT]      (ROOT: a checkout; default this one)
 #

@@ -47,7 +47,7 @@ echo "  oriented: $out/bunny_oriented.ply"
 #    metrics from MeshLab's Hausdorff filter, and a before/after picture.
 echo
 echo "The independent judge (PrusaSlicer support volume, scaled to 60 mm):"
-"$here/scripts/evaluate.sh" "$here/data/bunny.ply" --out "$out/eval-bunny" --name "sample bunny" --quiet
+"$here/eval/run.sh" part "$here/data/bunny.ply" --out "$out/eval-bunny" --name "sample bunny" --quiet
 echo
 echo "The same judge with Print Orientation first: as given, oriented, oriented + slimmed:"
-"$here/scripts/evaluate.sh" "$here/data/bunny.ply" --orient --out "$out/eval-bunny-oriented" --name "sample bunny, oriented" --quiet
+"$here/eval/run.sh" part "$here/data/bunny.ply" --orient --out "$out/eval-bunny-oriented" --name "sample bunny, oriented" --quiet

@@ -4,14 +4,14 @@
 #
 #   scripts/output-hashes.sh [--build DIR] [--corpus DIR] [--out FILE] [--compare FILE]
 #
-# For each model of the corpus (scripts/corpus.sh; data/corpus/manifest.tsv) and each of four
+# For each model of the corpus (eval/run.sh corpus; data/corpus/manifest.tsv) and each of four
 # runs (the defaults; --orient with --oriented-output; --method paper; --one-resolution at 30
 # degrees with a 3% budget), one line: model, run, and the SHA-256 of the mesh written, of the
 # oriented mesh (--orient), of the --report JSON without its "seconds" figure and of the summary
 # with its timings masked. --out writes the lines to FILE (default: stdout); --compare FILE
 # compares them with an earlier list and exits 1 naming every line that differs.
 # The corpus must be the same files for both lists: it is made by this build's tools, so make it
-# once (scripts/corpus.sh) and keep it.
+# once (eval/run.sh corpus) and keep it.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$repo/build" corpus="$repo/data/corpus" out="" compare=""
@@ -28,7 +28,7 @@ done
 die() { echo "output-hashes: $*" >&2; exit 2; }
 cli="$build/cli/support-slim"
 [ -x "$cli" ] || die "no $cli: build first (scripts/build.sh)"
-[ -f "$corpus/manifest.tsv" ] || die "no corpus in $corpus: run scripts/corpus.sh"
+[ -f "$corpus/manifest.tsv" ] || die "no corpus in $corpus: run eval/run.sh corpus"
 [ -z "$compare" ] || [ -f "$compare" ] || die "no list to compare with: $compare"
 
 work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT

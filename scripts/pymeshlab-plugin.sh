@@ -72,7 +72,7 @@ if [ ! -f "$source_dir/ML_VERSION" ]; then
   # Debian testing (forky) ships 2025.07; a private apt state reads its source index without
   # touching this machine's apt sources.
   source "$here/scripts/lib/debian-chroot.sh"  # debian_mirror
-  mirror="${SLIM_DEBIAN_MIRROR:-$(debian_mirror)}"
+  mirror="${SLIM_DEBIAN_MIRROR:-$(debian_mirror)}" || exit 1
   say "fetching the meshlab $meshlab_version sources (Debian's source package) into $source_dir"
   apt_dir="$(mktemp -d)"
   trap 'rm -rf "$apt_dir"' EXIT

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Idempotent setup for a fresh Debian bookworm machine (root or sudo).
 #  1. Debian packages for building, testing and running the plugin (and for the corpus's
-#     conversions, scripts/corpus.sh, which a test builds: OpenSCAD and assimp).
+#     conversions, eval/run.sh corpus, which a test builds: OpenSCAD and assimp).
 #  2. MeshLab 2020.09 sources (headers + vcglib) from Debian's source package -> third_party/ (ignored).
 #  3. The sample bunny from the npm package `bunny`, turned +Z up -> data/bunny.ply (ignored).
 #  4. CuraEngine's printer definitions (fdmprinter/fdmextruder.def.json) from Debian's `cura`

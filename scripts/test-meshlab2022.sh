@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The MeshLab 2022.02 check (issue 9), in a Debian 13 (trixie) chroot:
+# The MeshLab 2022.02 check, in a Debian 13 (trixie) chroot:
 #   1. a trixie root from debootstrap, cached in $SLIM_TRIXIE_ROOT (made once, reused after);
 #   2. inside it, Debian's meshlab 2022.02 and the build tools, and MeshLab's upstream sources
 #      (the orig tarball of Debian's source package) for its plugin headers and vcglib;

@@ -20,7 +20,7 @@
 #
 # The root is made in ROOT.partial and renamed when complete, so an interrupted run never leaves
 # a root that looks usable. SLIM_DEBIAN_MIRROR overrides the mirror (default: the one this
-# machine's apt uses for Debian itself).
+# machine's apt uses for Debian itself; debian_mirror below, which fails when there is none).
 
 chroot_tag=chroot
 chroot_root=""
@@ -31,13 +31,43 @@ stage_start=0
 stage() { stage_start=$SECONDS; echo "=== [$chroot_tag] $*"; }
 stage_done() { echo "=== [$chroot_tag] done in $((SECONDS - stage_start)) s"; }
 
-# The mirror this machine's apt uses for Debian itself (not -security, not third-party repos).
+# The mirror this machine's apt uses for Debian itself (not -security, not third-party repos):
+# the first http(s) URI ending in /debian of a binary source ("deb") in the apt sources, one-line
+# (sources.list, *.list) or deb822 (*.sources, stanzas with Enabled: no skipped). Reads FILE...
+# when given, else this machine's. With none, says so in one line on stderr and returns 1.
 debian_mirror() {
-  local uri
-  uri="$( { grep -hs '^URIs:' /etc/apt/sources.list.d/*.sources | awk '{for (i = 2; i <= NF; i++) print $i}'
-            grep -hs '^deb ' /etc/apt/sources.list /etc/apt/sources.list.d/*.list | sed 's/\[[^]]*\]//' | awk '{print $2}'
-          } | grep -E '/debian/?$' | head -1)"
-  echo "${uri:-http://deb.debian.org/debian}"
+  local files=("$@") f uri
+  [ $# -gt 0 ] || files=(/etc/apt/sources.list /etc/apt/sources.list.d/*.list /etc/apt/sources.list.d/*.sources)
+  uri="$(for f in "${files[@]}"; do
+           [ -f "$f" ] && [ -r "$f" ] || continue
+           case "$f" in
+             *.sources) awk "$(debian_mirror_deb822_awk)" "$f" ;;
+             *) awk '$1 == "deb" { sub(/#.*/, ""); gsub(/\[[^]]*\]/, ""); print $2 }' "$f" ;;
+           esac
+         done | grep -E '^https?://[^[:space:]]+/debian/?$' | head -1 || true)"
+  if [ -z "$uri" ]; then
+    echo "no Debian archive (a deb source at http(s)://.../debian) in the apt sources ${files[*]}; set SLIM_DEBIAN_MIRROR" >&2
+    return 1
+  fi
+  echo "$uri"
+}
+# The awk program that prints the URIs of the enabled "deb" stanzas of a deb822 .sources file.
+debian_mirror_deb822_awk() {
+  cat <<'AWK'
+function flush() {
+  if (types ~ /(^| )deb( |$)/ && enabled != "no") { n = split(uris, u, " "); for (i = 1; i <= n; i++) print u[i] }
+  types = ""; uris = ""; enabled = ""; field = ""
+}
+/^[ \t]*#/ { next }
+/^[ \t]*$/ { flush(); next }
+/^[ \t]/ { v = $0; gsub(/[ \t]+/, " ", v); if (field == "types") types = types v; else if (field == "uris") uris = uris v; next }
+{
+  field = tolower(substr($0, 1, index($0, ":") - 1)); value = substr($0, index($0, ":") + 1)
+  gsub(/[ \t]+/, " ", value); sub(/^ /, "", value); sub(/ $/, "", value)
+  if (field == "types") types = value; else if (field == "uris") uris = value; else if (field == "enabled") enabled = tolower(value)
+}
+END { flush() }
+AWK
 }
 
 # Unmounts everything at or below a directory, deepest first.
@@ -65,7 +95,7 @@ chroot_cleanup() {
 # debootstrap SUITE into ROOT.partial, then rename it to ROOT.
 chroot_bootstrap() {
   local suite="$1" root="$2" mirror script=""
-  mirror="${SLIM_DEBIAN_MIRROR:-$(debian_mirror)}"
+  mirror="${SLIM_DEBIAN_MIRROR:-$(debian_mirror)}" || return 1
   stage "debootstrap $suite from $mirror into $root"
   command -v debootstrap >/dev/null || apt-get install -y -qq debootstrap >/dev/null
   # An older debootstrap has no script for a newer testing release; sid's fits every one of them.
@@ -119,7 +149,7 @@ chroot_setup() {
   fi
   if [ ! -e "$root/.slim-bootstrapped" ]; then
     [ -e "$root" ] && { echo "$root exists but was not made by these scripts; remove it or choose another root" >&2; return 1; }
-    chroot_bootstrap "$suite" "$root"
+    chroot_bootstrap "$suite" "$root" || return 1
   fi
   # Testing's Release files carry a Valid-Until date that a mirror snapshot outlives; its
   # signatures are still checked.

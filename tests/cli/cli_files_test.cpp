@@ -1,4 +1,4 @@
-// What goes in comes out, through the support-slim CLI (issue 16): the output has the input's
+// What goes in comes out, through the support-slim CLI: the output has the input's
 // vertex list and face list in the same order, with no welding, and the attributes the input
 // carries; STL is welded and says so; malformed files are refused in one line; the summary has no
 // empty field.

@@ -148,6 +148,21 @@ TEST(Cli, OrientOptionsAreChecked) {
   }
 }
 
+// A negative build plate tolerance is refused before any work, with or without the orientation
+// search: no file is written and the reason is one line.
+TEST(Cli, ANegativePlateToleranceIsRefused) {
+  const fs::path dir = scratch();
+  const std::string bunny = "'" + test::sample_bunny_path() + "' -o '" + (dir / "o.ply").string() + "' ";
+  for (const std::string& args : {std::string("--plate-tolerance -1"), std::string("--orient --plate-tolerance -0.5")}) {
+    const CliRun r = run_cli(bunny + args + " --quiet");
+    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_NE(r.err.find("the build plate tolerance must be >= 0 mm"), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "o.ply")) << args;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Cli, BadInputExitsNonZeroWithOneLine) {
   const fs::path dir = scratch();
   const std::string bunny = "'" + test::sample_bunny_path() + "'";
@@ -178,9 +193,9 @@ std::string cli_flags(const test::BadInput& c, const fs::path& dir) {
   const SlimmingOptions& o = c.options;
   std::ostringstream flags;
   flags.precision(17);
-  flags << " --dir " << o.print_direction.x() << "," << o.print_direction.y() << "," << o.print_direction.z()
-        << " --angle " << o.alpha_max_deg << " --resolution " << o.resolution << " --iterations " << o.max_iterations
-        << " --max-deviation " << o.max_deviation_pct << " --max-k " << o.max_k
+  flags << " --dir " << o.print.direction.x() << "," << o.print.direction.y() << "," << o.print.direction.z()
+        << " --angle " << o.print.alpha_max_deg << " --resolution " << o.resolution << " --iterations " << o.steps.max_iterations
+        << " --max-deviation " << o.budget.share_percent().value_or(0.0) << " --max-k " << o.steps.max_k
         << " --domain " << (o.domain == DomainKind::TetGen ? "tetgen" : "voxel")
         << " --method " << (o.method == SlimmingMethod::Paper ? "paper" : "coherent");
   if (c.preserve_selection) {
@@ -196,7 +211,7 @@ std::string cli_flags(const test::BadInput& c, const fs::path& dir) {
 class BadInputCli : public ::testing::TestWithParam<test::BadInput> {};
 }  // namespace
 
-// Issue 7 through the CLI: every catalogue case as a PLY file (NaN and all) and flags. A
+// The bad-input catalogue through the CLI: every case as a PLY file (NaN and all) and flags. A
 // refusal is exit code 1 and one line naming the reason; a success writes a sane mesh.
 TEST_P(BadInputCli, WritesASaneMeshOrExitsWithOneLine) {
   const test::BadInput& c = GetParam();
@@ -209,8 +224,8 @@ TEST_P(BadInputCli, WritesASaneMeshOrExitsWithOneLine) {
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;  // exactly one line
     EXPECT_EQ(r.err.rfind("support-slim: ", 0), 0u) << r.err;
     // A NaN setting never reaches the core: the flag's own parser names it.
-    const bool nan_setting = !c.options.print_direction.allFinite() || std::isnan(c.options.alpha_max_deg) ||
-                             std::isnan(c.options.max_deviation_pct);
+    const bool nan_setting = !c.options.print.direction.allFinite() || std::isnan(c.options.print.alpha_max_deg) ||
+                             std::isnan(c.options.budget.share_percent().value_or(0.0));
     const std::string reason = nan_setting ? "expects a number" : c.refusal;
     EXPECT_TRUE(mentions(r.err, reason)) << c.name << ": " << r.err;
     EXPECT_FALSE(fs::exists(out));
@@ -220,16 +235,16 @@ TEST_P(BadInputCli, WritesASaneMeshOrExitsWithOneLine) {
     const Surface input = io::load_surface(in.string()), result = io::load_surface(out.string());
     ASSERT_EQ(result.F, input.F);
     ASSERT_TRUE(result.V.allFinite());
-    OverhangOptions o;
-    o.print_direction = c.options.print_direction;
-    o.alpha_max_deg = c.options.alpha_max_deg;
+    PrintSetup o;
+    o.direction = c.options.print.direction;
+    o.alpha_max_deg = c.options.print.alpha_max_deg;
     const double diag = (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm();
-    o.plate_tolerance = 1e-3 * diag;
+    o.plate = PlateRule::within(1e-3 * diag);
     const Surface seen_in = c.inside_out ? flipped(input) : input, seen_out = c.inside_out ? flipped(result) : result;
     const OverhangReport was = analyse_overhang(seen_in, o), now = analyse_overhang(seen_out, o);
     EXPECT_LE(now.risky_area, was.risky_area + 1e-5 * was.total_area) << c.name;
     const double ulps = 1e-6 * std::max(diag, input.V.cwiseAbs().maxCoeff());  // the PLY holds floats
-    const Eigen::Vector3d d = c.options.print_direction.normalized();
+    const Eigen::Vector3d d = c.options.print.direction.normalized();
     EXPECT_GE((result.V * d).minCoeff(), (input.V * d).minCoeff() - ulps) << c.name;
   }
   fs::remove_all(dir);

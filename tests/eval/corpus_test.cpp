@@ -1,4 +1,4 @@
-// scripts/corpus.sh end to end on this machine: the packages fetched and unpacked, the models
+// eval/studies/corpus.sh end to end on this machine: the packages fetched and unpacked, the models
 // converted and turned into their print pose, every one with the faces docs/corpus.md lists. The
 // corpus is what the frontier and the support model's validation are measured on; a reader change
 // once made it stop at the spider (its slivers), unseen, because nothing built it.
@@ -22,10 +22,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The corpus, built once in the build tree (scripts/corpus.sh only checks it on a second run).
+// The corpus, built once in the build tree (eval/studies/corpus.sh only checks it on a second run).
 fs::path corpus_dir() { return fs::path(SLIM_EVAL_OUT_DIR) / "corpus"; }
 test::CommandRun build_corpus() {
-  return test::run_command(test::shell_quote(test::source_dir() + "/scripts/corpus.sh") + " --build " +
+  return test::run_command(test::shell_quote(test::source_dir() + "/eval/studies/corpus.sh") + " --build " +
                            test::shell_quote(SLIM_BINARY_DIR) + " --out " + test::shell_quote(corpus_dir().string()));
 }
 
@@ -73,14 +73,14 @@ TEST(Corpus, EveryModelArrivesInItsPrintPoseWithItsFaces) {
   bool tie = false;  // a turn the score prefers that the model cannot tell from the pose as given
   for (size_t k = 1; k < duck.top.size(); ++k) {
     const OrientationCandidate& c = duck.top[k];
-    tie |= c.support_estimate >= 0.0 && c.score < duck.as_given.score && c.contact_area < duck.as_given.contact_area &&
-           c.support_estimate <= duck.as_given.support_estimate * 1.01 + 1.0;
+    tie |= c.support_estimate && c.score < duck.as_given.score && c.contact_area < duck.as_given.contact_area &&
+           *c.support_estimate <= duck.as_given.support_estimate.value() * 1.01 + 1.0;
   }
   EXPECT_TRUE(tie);
 }
 
 TEST(Corpus, TheSupportModelPredictsPrusaSlicersChangeOnTheHinge) {
-  // The yardstick (the model's predicted change within 5 points of PrusaSlicer's) on the
+  // The yardstick (the model's predicted change within 5 points of PrusaSlicer's) on the
   // corpus model it missed by 9: slimmed at the defaults, the hinge's bore ceiling turns from a
   // round one into one whose 45-degree facets are steeper. Its new lowest overhanging facet ends
   // 0.01 mm short of a grid row, and PrusaSlicer still supports that row: each layer's overhang
@@ -104,7 +104,7 @@ TEST(Corpus, TheSupportModelPredictsPrusaSlicersChangeOnTheHinge) {
     const fs::path stl = dir / (k == 0 ? "input.stl" : "result.stl");
     io::save_surface(stl.string(), part);
     const test::CommandRun sliced = test::run_command(
-        test::shell_quote(test::source_dir() + "/tools/slice_support.sh") + " " + test::shell_quote(stl.string()) +
+        test::shell_quote(test::source_dir() + "/eval/studies/slice_support.sh") + " " + test::shell_quote(stl.string()) +
         " --slicer prusa --angle 45 --turns 0,90 --build " + test::shell_quote(SLIM_BINARY_DIR) + " --out " +
         test::shell_quote((dir / (k == 0 ? "sliced_input" : "sliced_result")).string()));
     ASSERT_EQ(sliced.exit_code, 0) << sliced.output;

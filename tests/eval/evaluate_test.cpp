@@ -1,4 +1,4 @@
-// tools/evaluate.sh end to end on the refined arch (whose overhang Support Slimming does reduce):
+// eval/studies/part.sh end to end on the refined arch (whose overhang Support Slimming does reduce):
 // the slicer must need less support after slimming by more than its noise, at 45 degrees and at
 // 30 (where the slicer's threshold, measured from the horizontal, is 60), and the report must
 // hold the table and the picture.
@@ -43,7 +43,7 @@ eval::GcodeExtrusion read_gcode(const fs::path& file) {
 }
 
 test::CommandRun evaluate(const std::string& args) {
-  return test::run_command(test::shell_quote(test::source_dir() + "/tools/evaluate.sh") + " --build " +
+  return test::run_command(test::shell_quote(test::source_dir() + "/eval/studies/part.sh") + " --build " +
                            test::shell_quote(SLIM_BINARY_DIR) + " --quiet " + args);
 }
 

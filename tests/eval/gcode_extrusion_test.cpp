@@ -9,7 +9,7 @@
 #include "core/print/overhang.h"
 #include "gcode_extrusion.h"
 #include "orient_faces.h"
-#include "print_setup.h"
+#include "print_frame.h"
 #include "support/shapes.h"
 
 using namespace slim;
@@ -184,12 +184,12 @@ TEST(PrintFrame, TurnsScalesAndRestsThePartOnThePlate) {
   EXPECT_NEAR((f.rotation * d - Eigen::Vector3d::UnitZ()).norm(), 0.0, 1e-12);
   EXPECT_NEAR(signed_volume(f.surface), std::pow(f.scale, 3) * signed_volume(t), 1e-6 * signed_volume(f.surface));
 
-  OverhangOptions along_d;
-  along_d.print_direction = d;
-  along_d.plate_tolerance = 1e-6;
-  OverhangOptions up = along_d;
-  up.print_direction = Eigen::Vector3d::UnitZ();
-  up.plate_tolerance = 1e-6 * f.scale;
+  PrintSetup along_d;
+  along_d.direction = d;
+  along_d.plate = PlateRule::within(1e-6);
+  PrintSetup up = along_d;
+  up.direction = Eigen::Vector3d::UnitZ();
+  up.plate = PlateRule::within(1e-6 * f.scale);
   const OverhangReport a = analyse_overhang(t, along_d), b = analyse_overhang(f.surface, up);
   EXPECT_GT(a.risky_count, 0);
   EXPECT_EQ(a.risky, b.risky);

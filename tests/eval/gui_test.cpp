@@ -85,8 +85,8 @@ TEST(MeshLabGui, SupportSlimmingFromTheFiltersMenuAddsASlimmedLayer) {
   EXPECT_GT(moved, 1e-3 * diag);
   EXPECT_LE(moved, 0.05 * diag * 1.001);  // the dialog's default deviation budget: 5%
   ASSERT_EQ(extras.quality.size(), layer.F.rows()) << "the layer carries the filter's face quality";
-  OverhangOptions o;
-  o.plate_tolerance = 1e-3 * diag;  // the dialog's default: 0.1% of the diagonal
+  PrintSetup o;
+  o.plate = PlateRule::within(1e-3 * diag);  // the dialog's default: 0.1% of the diagonal
   EXPECT_LT(analyse_overhang(layer, o).risky_area, 0.95 * analyse_overhang(input, o).risky_area);
 }
 

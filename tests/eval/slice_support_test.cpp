@@ -1,4 +1,4 @@
-// tools/slice_support.sh end to end with the real slicers: each figure is the mean over the
+// eval/studies/slice_support.sh end to end with the real slicers: each figure is the mean over the
 // quarter turns, every turn is a real slicing of the turned part, and the turns are exact, so a
 // part given already turned by a quarter has the same four figures and the same mean.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 #include "gcode_extrusion.h"
 #include "key_values.h"
 #include "mesh_io/mesh_io.h"
-#include "print_setup.h"
+#include "print_frame.h"
 #include "run_command.h"
 #include "support/shapes.h"
 #include "support/source_paths.h"
@@ -28,7 +28,7 @@ fs::path scratch(const std::string& name) { return test::scratch_dir(SLIM_EVAL_O
 std::map<std::string, double> parse_metrics(const std::string& text) { return test::parse_key_values(text); }
 
 test::CommandRun slice(const fs::path& stl, const std::string& slicer, const fs::path& out, const std::string& more = "") {
-  return test::run_command(test::shell_quote(test::source_dir() + "/tools/slice_support.sh") + " " + test::shell_quote(stl.string()) +
+  return test::run_command(test::shell_quote(test::source_dir() + "/eval/studies/slice_support.sh") + " " + test::shell_quote(stl.string()) +
                            " --slicer " + slicer + " --angle 45 --build " + test::shell_quote(SLIM_BINARY_DIR) + " --out " +
                            test::shell_quote(out.string()) + " " + more);
 }
@@ -87,7 +87,7 @@ void expect_mean_of_turns(const std::string& slicer) {
   // list the same triangles in another order (the STL reader welds by position), which moves
   // PrusaSlicer's figure by about 1e-5: far below the turns' spread (a few percent).
   const fs::path turned = dir / "arch_turned.stl";
-  const test::CommandRun t = test::run_command(test::shell_quote(SLIM_BINARY_DIR "/tools/slim-eval") + " turn " +
+  const test::CommandRun t = test::run_command(test::shell_quote(SLIM_BINARY_DIR "/eval/slim-eval") + " turn " +
                                                test::shell_quote(arch.string()) + " " + test::shell_quote(turned.string()) +
                                                " --quarter-turns 1");
   ASSERT_EQ(t.exit_code, 0) << t.output;
@@ -264,7 +264,7 @@ TEST(SliceSupport, BadArgumentsFailWithAOneLineReason) {
   const fs::path arch = write_arch(dir);
   for (const std::string& args : {std::string("--slicer simplify3d"), std::string("--slicer prusa --turns 45"),
                                   std::string("--slicer cura --turns 0,"), std::string("--slicer prusa --jobs 0")}) {
-    const test::CommandRun r = test::run_command(test::shell_quote(test::source_dir() + "/tools/slice_support.sh") + " " +
+    const test::CommandRun r = test::run_command(test::shell_quote(test::source_dir() + "/eval/studies/slice_support.sh") + " " +
                                                  test::shell_quote(arch.string()) + " --angle 45 --out " +
                                                  test::shell_quote((dir / "o").string()) + " " + args);
     EXPECT_NE(r.exit_code, 0) << args;

@@ -69,9 +69,9 @@ void check_refusal(const char* stage, const std::exception& e, std::ostringstrea
 }
 
 void check_analysis(const FuzzCase& c, std::ostringstream& problem) {
-  OverhangOptions o;
-  o.print_direction = c.options.print_direction;
-  o.alpha_max_deg = c.options.alpha_max_deg;
+  PrintSetup o;
+  o.direction = c.options.print.direction;
+  o.alpha_max_deg = c.options.print.alpha_max_deg;
   try {
     const OverhangReport r = analyse_overhang(c.surface, o);
     if (!r.quality.allFinite() || !(r.risky_area >= 0.0) || r.risky_area > r.total_area * (1 + 1e-12))
@@ -88,7 +88,7 @@ void check_domain_and_embedding(const FuzzCase& c, std::ostringstream& problem) 
   vo.max_bytes = kMemoryBudget;
   try {
     const Surface& s = c.surface;
-    const VoxelDomain dom = voxel_domain(s, c.options.print_direction, vo);
+    const VoxelDomain dom = voxel_domain(s, c.options.print.direction, vo);
     for (Eigen::Index t = 0; t < dom.mesh.T.rows(); ++t)
       if (!(tet_volume(dom.mesh.V, dom.mesh.T.row(t)) > 0.0)) {
         problem << "voxel domain: tet " << t << " is not positive; ";
@@ -122,8 +122,8 @@ void check_min_rotation(const FuzzCase& c, std::ostringstream& problem) {
   double tau;
   try {
     check_surface(c.surface);
-    d = unit_print_direction(c.options.print_direction);
-    tau = self_supporting_tau(c.options.alpha_max_deg);
+    d = unit_print_direction(c.options.print.direction);
+    tau = self_supporting_tau(c.options.print.alpha_max_deg);
   } catch (const std::invalid_argument&) {
     return;  // refused above already
   }
@@ -147,7 +147,7 @@ void check_min_rotation(const FuzzCase& c, std::ostringstream& problem) {
 // and rests the part on z = 0.
 void check_orientation(const FuzzCase& c, std::ostringstream& problem) {
   OrientationOptions o = with_effort(OrientationEffort::Fast);
-  o.alpha_max_deg = c.options.alpha_max_deg;
+  o.alpha_max_deg = c.options.print.alpha_max_deg;
   o.threads = c.options.threads;
   try {
     const OrientationResult r = optimize_orientation(c.surface, o);
@@ -174,7 +174,7 @@ void check_orientation(const FuzzCase& c, std::ostringstream& problem) {
 
 void check_slimming(const FuzzCase& c, std::ostringstream& problem) {
   SlimmingOptions o = c.options;
-  o.max_memory_bytes = kMemoryBudget;
+  o.guards.max_memory_bytes = kMemoryBudget;
   int reports = 0;
   if (c.cancel_after > 0) o.progress = [&](double, const std::string&) { return ++reports < c.cancel_after; };
   try {
@@ -199,13 +199,13 @@ FuzzCase decode(const std::uint8_t* data, size_t size) {
   o.domain = flags & kTetGen ? DomainKind::TetGen : DomainKind::Voxel;
   o.method = flags & kPaper ? SlimmingMethod::Paper : SlimmingMethod::Coherent;
   o.threads = flags & kTwoThreads ? 2 : 1;
-  for (int a = 0; a < 3; ++a) o.print_direction(a) = in.get<float>();
-  o.alpha_max_deg = in.get<float>();
-  o.max_deviation_pct = in.get<float>();
+  for (int a = 0; a < 3; ++a) o.print.direction(a) = in.get<float>();
+  o.print.alpha_max_deg = in.get<float>();
+  o.budget = DeviationBudget::from_percent(in.get<float>());
   const std::int32_t resolution = in.get<std::int32_t>(), iterations = in.get<std::int32_t>(), k = in.get<std::int32_t>();
   o.resolution = resolution >= 25 && resolution < kAbsurdResolution ? 1 + resolution % 24 : resolution;
-  o.max_iterations = iterations > 3 ? 1 + iterations % 3 : iterations;
-  o.max_k = k > 16 ? 1 + k % 16 : k;
+  o.steps.max_iterations = iterations > 3 ? 1 + iterations % 3 : iterations;
+  o.steps.max_k = k > 16 ? 1 + k % 16 : k;
   c.cancel_after = in.get<std::uint8_t>();
 
   const int nv = in.get<std::uint16_t>() % (kMaxVertices + 1);
@@ -244,12 +244,12 @@ std::vector<std::uint8_t> encode(const FuzzCase& c) {
   if (!o.rigid_features.empty()) flags |= kRigid;
   if (o.threads == 2) flags |= kTwoThreads;
   out.put(flags);
-  for (int a = 0; a < 3; ++a) out.put(static_cast<float>(o.print_direction(a)));
-  out.put(static_cast<float>(o.alpha_max_deg));
-  out.put(static_cast<float>(o.max_deviation_pct));
+  for (int a = 0; a < 3; ++a) out.put(static_cast<float>(o.print.direction(a)));
+  out.put(static_cast<float>(o.print.alpha_max_deg));
+  out.put(static_cast<float>(o.budget.share_percent().value_or(0.0)));
   out.put(static_cast<std::int32_t>(o.resolution));
-  out.put(static_cast<std::int32_t>(o.max_iterations));
-  out.put(static_cast<std::int32_t>(o.max_k));
+  out.put(static_cast<std::int32_t>(o.steps.max_iterations));
+  out.put(static_cast<std::int32_t>(o.steps.max_k));
   out.put(static_cast<std::uint8_t>(c.cancel_after));
   out.put(static_cast<std::uint16_t>(c.surface.V.rows()));
   for (Eigen::Index v = 0; v < c.surface.V.rows(); ++v)

@@ -49,8 +49,8 @@ void expect_slimmed_layer(const MeshModel& input, const MeshModel& out, const st
   ASSERT_TRUE(out.hasDataMask(MeshModel::MM_VERTQUALITY));
 
   // Quality, selection and vertex quality say what the core says about the new shape.
-  OverhangOptions o;
-  o.plate_tolerance = plate_tolerance;
+  PrintSetup o;
+  o.plate = PlateRule::within(plate_tolerance);
   const OverhangReport now = analyse_overhang(vcg_adapters::to_surface(out.cm), o);
   const OverhangReport before = analyse_overhang(vcg_adapters::to_surface(input.cm), o);
   EXPECT_LT(now.risky_area, before.risky_area);

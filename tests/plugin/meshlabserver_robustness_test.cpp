@@ -1,4 +1,4 @@
-// Issue 7 through the real meshlabserver (the private prefix, on a private Xvfb): a representative
+// The bad-input catalogue through the real meshlabserver (the private prefix, on a private Xvfb): a representative
 // subset of the bad inputs (support/bad_inputs.h, meshlabserver = true) as PLY files and scripts
 // for Support Slimming and Print Orientation,
 // and hand-written scripts that are wrong in the ways a script can be. meshlabserver must never
@@ -55,14 +55,14 @@ QString slimming_script(const BadInput& c) {
   QString s = example("support_slimming.mlx");
   s.replace(QRegularExpression(R"(x="[^"]*" y="[^"]*" z="[^"]*")"),
             QString(R"(x="%1" y="%2" z="%3")")
-                .arg(number(o.print_direction.x()), number(o.print_direction.y()), number(o.print_direction.z())));
-  s = set_value(s, "alphaMax", number(o.alpha_max_deg));
+                .arg(number(o.print.direction.x()), number(o.print.direction.y()), number(o.print.direction.z())));
+  s = set_value(s, "alphaMax", number(o.print.alpha_max_deg));
   s = set_value(s, "resolution", QString::number(o.resolution));
   s = set_value(s, "domain", o.domain == DomainKind::TetGen ? "1" : "0");
   s = set_value(s, "method", o.method == SlimmingMethod::Paper ? "1" : "0");
-  s = set_value(s, "maxIterations", QString::number(o.max_iterations));
-  s = set_value(s, "maxDeviation", number(o.max_deviation_pct));
-  s = set_value(s, "maxK", QString::number(o.max_k));
+  s = set_value(s, "maxIterations", QString::number(o.steps.max_iterations));
+  s = set_value(s, "maxDeviation", number(o.budget.share_percent().value_or(0.0)));
+  s = set_value(s, "maxK", QString::number(o.steps.max_k));
   return s;
 }
 
@@ -114,10 +114,10 @@ TEST_P(BadInputServer, SupportSlimmingSavesASaneLayerOrFailsWithItsReason) {
   ASSERT_TRUE(result.V.allFinite());
   // The saved face quality is the filter's measure: its negative part is the risky area left,
   // which must not exceed the input's.
-  OverhangOptions o;
-  o.print_direction = c.options.print_direction;
-  o.alpha_max_deg = c.options.alpha_max_deg;
-  o.plate_tolerance = 0.01;  // as in the script
+  PrintSetup o;
+  o.direction = c.options.print.direction;
+  o.alpha_max_deg = c.options.print.alpha_max_deg;
+  o.plate = PlateRule::within(0.01);  // as in the script
   const OverhangReport was = analyse_overhang(c.inside_out ? flipped(input) : input, o);
   const Eigen::VectorXd areas = face_areas(result);
   double risky = 0.0;
@@ -126,9 +126,9 @@ TEST_P(BadInputServer, SupportSlimmingSavesASaneLayerOrFailsWithItsReason) {
   EXPECT_LE(risky, was.risky_area + 1e-4 * was.total_area) << c.name;
   const double diag = (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm();
   const double ulps = 1e-6 * std::max(diag, input.V.cwiseAbs().maxCoeff());
-  const Eigen::Vector3d d = c.options.print_direction.normalized();
+  const Eigen::Vector3d d = c.options.print.direction.normalized();
   EXPECT_GE((result.V * d).minCoeff(), (input.V * d).minCoeff() - ulps) << c.name;
-  EXPECT_LE((result.V - input.V).rowwise().norm().maxCoeff(), c.options.max_deviation_pct / 100.0 * diag + ulps);
+  EXPECT_LE((result.V - input.V).rowwise().norm().maxCoeff(), c.options.budget.share_percent().value_or(0.0) / 100.0 * diag + ulps);
 }
 
 TEST_P(BadInputServer, PrintOrientationSavesTheBestPoseOrFailsWithItsReason) {
@@ -137,7 +137,7 @@ TEST_P(BadInputServer, PrintOrientationSavesTheBestPoseOrFailsWithItsReason) {
   const Scratch scratch;
   const fs::path in = scratch(c.name + ".ply"), out = scratch(c.name + "_oriented.ply"), mlx = scratch(c.name + ".mlx");
   test::write_ascii_ply(in.string(), c.surface);
-  write_text(mlx, set_value(set_value(example("print_orientation.mlx"), "alphaMax", number(c.options.alpha_max_deg)),
+  write_text(mlx, set_value(set_value(example("print_orientation.mlx"), "alphaMax", number(c.options.print.alpha_max_deg)),
                             "searchEffort", "0"));
   fs::remove(out);
   const test::ServerRun run = test::run_meshlabserver("-i '" + in.string() + "' -o '" + out.string() +
@@ -145,7 +145,7 @@ TEST_P(BadInputServer, PrintOrientationSavesTheBestPoseOrFailsWithItsReason) {
   EXPECT_FALSE(crashed(run)) << run.output;
   const Surface input = io::load_surface(in.string());
   std::string refusal;
-  const OrientationResult expected = test::fast_orientation(input, c.options.alpha_max_deg, refusal);
+  const OrientationResult expected = test::fast_orientation(input, c.options.print.alpha_max_deg, refusal);
   if (!refusal.empty()) {
     EXPECT_EQ(run.exit_code, 255) << run.output;
     EXPECT_TRUE(mentions(run.output, "Problem with filter: Print Orientation")) << run.output;

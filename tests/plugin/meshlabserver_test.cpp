@@ -39,8 +39,8 @@ TEST(Meshlabserver, OverhangAnalysisScriptOnTheBunny) {
   ASSERT_TRUE(std::regex_search(run.output, m, std::regex(R"((\d+) risky faces of (\d+); risky area ([0-9.eE+-]+) mm\^2)")))
       << run.output;
   const Surface bunny = test::load_mesh(in);
-  OverhangOptions o;
-  o.plate_tolerance = 0.01;  // as in the example script
+  PrintSetup o;
+  o.plate = PlateRule::within(0.01);  // as in the example script
   const OverhangReport core = analyse_overhang(bunny, o);
   EXPECT_NEAR(std::stod(m[3]), core.risky_area, 1e-4 * core.risky_area);
   EXPECT_NEAR(std::stoi(m[1]), core.risky_count, 2);  // float vs double at the threshold
@@ -114,8 +114,8 @@ TEST(Meshlabserver, PrintOrientationScriptOnTheBunny) {
   EXPECT_LT((result.V - apply_orientation(input, core.rotation).V).cwiseAbs().maxCoeff(), 1e-4);
   EXPECT_NEAR(result.V.col(2).minCoeff(), 0.0, 1e-5);
   ASSERT_EQ(saved.quality.size(), input.F.rows());
-  OverhangOptions o;
-  o.plate_tolerance = core.plate_tolerance;
+  PrintSetup o;
+  o.plate = plate_rule_as_used(core);
   const OverhangReport pose = analyse_overhang(result, o);
   EXPECT_LT((saved.quality - pose.quality).cwiseAbs().maxCoeff(), 1e-3);
   fs::remove_all(out.parent_path());

@@ -1,4 +1,4 @@
-// What goes in comes out, through Support Slimming in MeshLab (issue 16): a PLY with duplicate,
+// What goes in comes out, through Support Slimming in MeshLab: a PLY with duplicate,
 // coincident and unreferenced vertices, a non-manifold vertex, per-vertex colours and texture
 // coordinates, imported as MeshLab imports it, gives a new layer with the input layer's vertex
 // list in the same order and the same attributes; the input layer is left as it was.

@@ -1,4 +1,4 @@
-// Issue 7 through the plugin as MeshLab runs it: every bad input of the catalogue
+// The bad-input catalogue through the plugin as MeshLab runs it: every case
 // (support/bad_inputs.h) through the three filters on a MeshDocument. A refusal must leave the
 // document exactly as it was (no new layer, the input layer's data untouched) with the reason in
 // the error message and the log; a success must give a sane layer. Then hand-written .mlx
@@ -61,15 +61,15 @@ MeshModel* add_case_layer(MeshDocument& md, const BadInput& c) {
 RichParameterList slimming_params(PluginHarness& h, MeshDocument& md, const BadInput& c) {
   RichParameterList p = h.defaults(kSlimming, md);
   const SlimmingOptions& o = c.options;
-  p.setValue("printDirection", Point3fValue(vcg::Point3f(float(o.print_direction.x()), float(o.print_direction.y()),
-                                                         float(o.print_direction.z()))));
-  p.setValue("alphaMax", FloatValue(float(o.alpha_max_deg)));
+  p.setValue("printDirection", Point3fValue(vcg::Point3f(float(o.print.direction.x()), float(o.print.direction.y()),
+                                                         float(o.print.direction.z()))));
+  p.setValue("alphaMax", FloatValue(float(o.print.alpha_max_deg)));
   p.setValue("resolution", IntValue(o.resolution));
   p.setValue("domain", EnumValue(o.domain == DomainKind::TetGen ? 1 : 0));
   p.setValue("method", EnumValue(o.method == SlimmingMethod::Paper ? 1 : 0));
-  p.setValue("maxIterations", IntValue(o.max_iterations));
-  p.setValue("maxDeviation", FloatValue(float(o.max_deviation_pct)));
-  p.setValue("maxK", IntValue(o.max_k));
+  p.setValue("maxIterations", IntValue(o.steps.max_iterations));
+  p.setValue("maxDeviation", FloatValue(float(o.budget.share_percent().value_or(0.0))));
+  p.setValue("maxK", IntValue(o.steps.max_k));
   p.setValue("preserveSelection", BoolValue(c.preserve_selection));
   return p;
 }
@@ -77,10 +77,10 @@ RichParameterList slimming_params(PluginHarness& h, MeshDocument& md, const BadI
 // The layer as the core sees it, and its overhangs (turned over when inside out).
 OverhangReport measure(const MeshModel& m, const BadInput& c, double plate_tolerance) {
   const Surface s = vcg_adapters::to_surface(m.cm);
-  OverhangOptions o;
-  o.print_direction = c.options.print_direction;
-  o.alpha_max_deg = c.options.alpha_max_deg;
-  o.plate_tolerance = plate_tolerance;
+  PrintSetup o;
+  o.direction = c.options.print.direction;
+  o.alpha_max_deg = c.options.print.alpha_max_deg;
+  o.plate = PlateRule::within(plate_tolerance);
   return analyse_overhang(c.inside_out ? flipped(s) : s, o);
 }
 
@@ -139,10 +139,10 @@ TEST_P(BadInputPlugin, SupportSlimmingAddsASaneLayerOrRefusesLeavingTheDocumentA
   const double tolerance = params.getAbsPerc("plateTolerance");
   const OverhangReport was = measure(*input, c, tolerance), now = measure(*out, c, tolerance);
   EXPECT_LE(now.risky_area, was.risky_area + 1e-6 * was.total_area) << c.name;
-  const Eigen::Vector3d d = c.options.print_direction.normalized();
+  const Eigen::Vector3d d = c.options.print.direction.normalized();
   EXPECT_GE((out_s.V * d).minCoeff(), (in_s.V * d).minCoeff() - ulps) << c.name << ": below the plate";
-  if (c.options.max_deviation_pct > 0) {
-    EXPECT_LE((out_s.V - in_s.V).rowwise().norm().maxCoeff(), c.options.max_deviation_pct / 100.0 * diag + ulps) << c.name;
+  if (c.options.budget.share_percent().value_or(0.0) > 0) {
+    EXPECT_LE((out_s.V - in_s.V).rowwise().norm().maxCoeff(), c.options.budget.share_percent().value_or(0.0) / 100.0 * diag + ulps) << c.name;
   }
   for (int f = 0; f < out->cm.fn; ++f) {
     // The core measured double positions; the layer holds them as floats.
@@ -193,7 +193,7 @@ TEST_P(BadInputPlugin, PrintOrientationAddsTheBestPoseOrRefusesLeavingTheDocumen
   MeshModel* input = add_case_layer(md, c);
   const LayerSnapshot before(*input);
   RichParameterList params = h.defaults(kOrientation, md);
-  params.setValue("alphaMax", FloatValue(float(c.options.alpha_max_deg)));
+  params.setValue("alphaMax", FloatValue(float(c.options.print.alpha_max_deg)));
   params.setValue("searchEffort", EnumValue(0));
   const Surface seen = vcg_adapters::to_surface(input->cm);
   std::string core_refusal;
@@ -312,8 +312,8 @@ TEST(PluginLayers, DeletedButNotCompactedElementsAreSkipped) {
   ASSERT_EQ(live.V.rows(), t.V.rows() - 1);
 
   ASSERT_TRUE(h.apply(kOverhang, md, h.defaults(kOverhang, md))) << h.lastError().toStdString();
-  const OverhangReport expected = analyse_overhang(live, OverhangOptions{Eigen::Vector3d::UnitZ(), 45.0,
-                                                                          h.defaults(kOverhang, md).getAbsPerc("plateTolerance")});
+  const OverhangReport expected = analyse_overhang(live, PrintSetup{Eigen::Vector3d::UnitZ(), 45.0,
+      PlateRule::within(h.defaults(kOverhang, md).getAbsPerc("plateTolerance"))});
   Eigen::Index f = 0;
   for (const auto& face : m->cm.face) {
     if (face.IsD()) continue;

@@ -250,7 +250,7 @@ TEST(Plugin, SupportSlimmingCanOptimizeTheOrientationFirst) {
 
   const Surface seen = vcg_adapters::to_surface(input->cm);
   OrientationOptions oo;
-  oo.plate_tolerance = params.getAbsPerc("plateTolerance");
+  oo.plate = PlateRule::within(params.getAbsPerc("plateTolerance"));
   const Surface oriented = apply_orientation(seen, optimize_orientation(seen, oo).rotation);
   const Surface got = vcg_adapters::to_surface(md.mm()->cm);
   const Eigen::VectorXd moved = (got.V - oriented.V).rowwise().norm();

@@ -79,8 +79,8 @@ TEST_F(Plugin2022, OverhangAnalysisMarksTheBunnysRiskyFacesAndMovesNothing) {
   const RichParameterList params = h.defaults(kOverhang, md);
   ASSERT_TRUE(h.apply(kOverhang, md, params)) << h.lastError().toStdString();
 
-  OverhangOptions o;
-  o.plate_tolerance = params.getAbsPerc("plateTolerance");
+  PrintSetup o;
+  o.plate = PlateRule::within(params.getAbsPerc("plateTolerance"));
   const OverhangReport expected = analyse_overhang(vcg_adapters::to_surface(m->cm), o);
   ASSERT_GT(expected.risky_count, 0);  // the bunny's chin and ears overhang
   EXPECT_EQ(positions(*m), original);

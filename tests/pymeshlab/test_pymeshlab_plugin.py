@@ -26,7 +26,7 @@ NAMES = {
 METHODS_AT_IMPORT = set(dir(pymeshlab.MeshSet))
 pymeshlab.load_plugin(PLUGIN)
 # PyMeshLab 2025.7 keeps a pointer to the log of the MeshSet whose filter raised, and its next
-# mesh load writes there (PyMeshLab issue #384): a MeshSet that saw a refusal must outlive the
+# mesh load writes there (a PyMeshLab bug): a MeshSet that saw a refusal must outlive the
 # test run, or a later load_new_mesh writes into freed memory (std::bad_alloc, or worse).
 REFUSING_MESH_SETS = []
 

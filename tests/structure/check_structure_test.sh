@@ -57,6 +57,11 @@ make_tree "$work/side"
 printf '#include "cli/main.cpp"\n' >"$work/side/vcg_adapters/bad.h"
 expect "an adapter including the CLI" 1 "vcg_adapters/bad.h:1: vcg_adapters/ includes cli/main.cpp" "$work/side"
 
+make_tree "$work/eval"
+mkdir -p "$work/eval/eval"
+printf '#include "core/optimizer/slimming.h"\n#include "cli/main.cpp"\n' >"$work/eval/eval/bad.cpp"
+expect "eval/ including the CLI" 1 "eval/bad.cpp:2: eval/ includes cli/main.cpp" "$work/eval"
+
 make_tree "$work/long"
 function_of "$work/long/filter_support_slimming/core/geometry/long.cpp" 81
 expect "an 81-line function" 1 "long.cpp:1: a function of 81 lines, over 80" "$work/long"

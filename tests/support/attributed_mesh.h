@@ -1,4 +1,4 @@
-// The mesh of the "what goes in comes out" tests (issue 16): every kind of vertex list a user's
+// The mesh of the "what goes in comes out" tests: every kind of vertex list a user's
 // file may hold, with the attributes files carry beside the positions.
 //
 // attributed_mesh() -> AttributedMesh

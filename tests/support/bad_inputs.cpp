@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -217,30 +218,30 @@ std::vector<BadInput> bad_inputs() {
     return add(std::move(c));
   };
   setting(refused("print_direction_zero", "print direction (0, 0, 0)", T, "print direction", "non-zero"),
-          [](SlimmingOptions& o) { o.print_direction = Eigen::Vector3d::Zero(); })
+          [](SlimmingOptions& o) { o.print.direction = Eigen::Vector3d::Zero(); })
       .analysis_refusal = "print direction";
   cases.back().meshlabserver = true;
   setting(refused("print_direction_nan", "print direction (NaN, 0, 1)", T, "print direction", "non-zero"),
-          [](SlimmingOptions& o) { o.print_direction = Eigen::Vector3d(kNaN, 0, 1); })
+          [](SlimmingOptions& o) { o.print.direction = Eigen::Vector3d(kNaN, 0, 1); })
       .analysis_refusal = "print direction";
   setting(valid("print_direction_non_unit", "print direction (0, 0, 7)", T),
-          [](SlimmingOptions& o) { o.print_direction = Eigen::Vector3d(0, 0, 7); })
+          [](SlimmingOptions& o) { o.print.direction = Eigen::Vector3d(0, 0, 7); })
       .risky_before = t_risky;
   setting(refused("alpha_negative", "self-supporting angle -5 deg", T, "self-supporting angle", "[0, 90)"),
-          [](SlimmingOptions& o) { o.alpha_max_deg = -5; })
+          [](SlimmingOptions& o) { o.print.alpha_max_deg = -5; })
       .analysis_refusal = "[0, 90)";
   setting(refused("alpha_90", "self-supporting angle 90 deg", T, "self-supporting angle", "[0, 90)"),
-          [](SlimmingOptions& o) { o.alpha_max_deg = 90; })
+          [](SlimmingOptions& o) { o.print.alpha_max_deg = 90; })
       .analysis_refusal = "[0, 90)";
   cases.back().meshlabserver = true;
   setting(refused("alpha_nan", "self-supporting angle NaN", T, "self-supporting angle", "[0, 90)"),
-          [](SlimmingOptions& o) { o.alpha_max_deg = kNaN; })
+          [](SlimmingOptions& o) { o.print.alpha_max_deg = kNaN; })
       .analysis_refusal = "[0, 90)";
   setting(valid("iterations_zero", "iteration limit 0: embed and write back", T),
-          [](SlimmingOptions& o) { o.max_iterations = 0; })
+          [](SlimmingOptions& o) { o.steps.max_iterations = 0; })
       .meshlabserver = true;
   setting(refused("iterations_negative", "iteration limit -1", T, "iteration limit", "0 or more"),
-          [](SlimmingOptions& o) { o.max_iterations = -1; });
+          [](SlimmingOptions& o) { o.steps.max_iterations = -1; });
   setting(valid("resolution_one", "voxel resolution 1", T), [](SlimmingOptions& o) { o.resolution = 1; })
       .risky_before = t_risky;
   setting(refused("resolution_zero", "voxel resolution 0", T, "voxel resolution", "at least 1"),
@@ -250,10 +251,10 @@ std::vector<BadInput> bad_inputs() {
           [](SlimmingOptions& o) { o.resolution = 1000000; })
       .meshlabserver = true;
   setting(refused("max_k_zero", "at most 0 K-means proxies", T, "proxies", "at least 1"),
-          [](SlimmingOptions& o) { o.max_k = 0; });
+          [](SlimmingOptions& o) { o.steps.max_k = 0; });
   setting(refused("deviation_nan", "deviation budget NaN %", T, "deviation budget", "finite"),
-          [](SlimmingOptions& o) { o.max_deviation_pct = kNaN; });
-  setting(valid("deviation_none", "deviation budget 0 (none)", T), [](SlimmingOptions& o) { o.max_deviation_pct = 0; });
+          [](SlimmingOptions& o) { o.budget = DeviationBudget::from_percent(kNaN); });
+  setting(valid("deviation_none", "deviation budget 0 (none)", T), [](SlimmingOptions& o) { o.budget = DeviationBudget::from_percent(0); });
   setting(valid("paper_method", "the paper's method on the open T", open_t),
           [](SlimmingOptions& o) { o.method = SlimmingMethod::Paper; });
 
@@ -261,7 +262,7 @@ std::vector<BadInput> bad_inputs() {
   {
     const Surface bowl = open_hemisphere(2, 10.0, true);
     BadInput& c = setting(valid("every_face_risky", "an open bowl, every face overhanging at 0 deg", bowl),
-                          [](SlimmingOptions& o) { o.alpha_max_deg = 0; });
+                          [](SlimmingOptions& o) { o.print.alpha_max_deg = 0; });
     c.risky_before = face_areas(bowl).sum();
     add(valid("no_face_risky", "a box: nothing overhangs", box({0, 0, 0}, {10, 10, 10}))).risky_before = 0.0;
   }
@@ -301,24 +302,25 @@ std::string slimming_result_problem(const Surface& input, const SlimmingOptions&
   const double moved_err = (r.displacement - (out.V - input.V).rowwise().norm()).cwiseAbs().maxCoeff();
   if (moved_err > 1e-9 * diag) why << "displacements differ from the positions by " << moved_err << "; ";
 
-  const Eigen::Vector3d d = o.print_direction.normalized();
+  const Eigen::Vector3d d = o.print.direction.normalized();
   const double plate = (input.V * d).minCoeff(), lowest = (out.V * d).minCoeff();
   if (lowest < plate - 1e-9 * diag) why << "a vertex went " << plate - lowest << " below the plate; ";
-  if (o.max_deviation_pct > 0.0) {
+  if (o.budget.share_percent().value_or(0.0) > 0.0) {
     // The surface follows the domain through barycentric sums, exact to a few ulps of the
     // coordinates: a budget below that (1e-38 %) is kept only to that rounding.
-    const double budget = o.max_deviation_pct / 100.0 * diag;
+    const double budget = o.budget.share_percent().value_or(0.0) / 100.0 * diag;
     const double rounding = 16 * std::numeric_limits<double>::epsilon() * input.V.cwiseAbs().maxCoeff();
     if (r.displacement.maxCoeff() > budget * (1.0 + 1e-9) + rounding)
       why << "a vertex moved " << r.displacement.maxCoeff() << ", over the budget " << budget << "; ";
   }
-  if (r.iterations > o.max_iterations) why << "more iterations than allowed; ";
+  if (r.iterations > o.steps.max_iterations) why << "more iterations than allowed; ";
 
   // The statistics re-measure, on the part the run saw (turned over when inside out).
-  OverhangOptions measure;
-  measure.print_direction = d;
-  measure.alpha_max_deg = o.alpha_max_deg;
-  measure.plate_tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * diag;
+  PrintSetup measure;
+  measure.direction = d;
+  measure.alpha_max_deg = o.print.alpha_max_deg;
+  const std::optional<double> tolerance = o.print.plate.tolerance_mm(diag);  // the input's, as the run's
+  measure.plate = tolerance ? PlateRule::within(*tolerance) : PlateRule::none();
   const Surface seen = r.inside_out ? flipped(out) : out;
   const OverhangReport now = analyse_overhang(seen, measure);
   const double slack = 1e-6 * now.total_area;

@@ -1,10 +1,10 @@
-// The bad inputs of issue 7: meshes and settings that must never crash, hang or exhaust memory.
+// The bad inputs: meshes and settings that must never crash, hang or exhaust memory.
 // Each ends either in a valid result with sane statistics or in a refusal whose message says what
 // was wrong and what to change. The core tests, the plugin harness, the meshlabserver tests, the
 // CLI tests and the fuzz seed corpus all run these same cases.
 //
 // bad_inputs() -> the catalogue, in a fixed order.
-// bad_files() -> the file-level catalogue (issue 16): malformed mesh files the CLI's readers must
+// bad_files() -> the file-level catalogue: malformed mesh files the CLI's readers must
 //   refuse with one line naming the file and what is wrong (bad_files.cpp).
 // slimming_result_problem(input, options, result) -> "" when a result is sane, else what is not:
 //   finite positions, the input's faces, displacements that match the positions, no vertex below

@@ -8,7 +8,7 @@
 
 namespace slim::test {
 
-std::string source_dir();  // the checkout's root (examples/, scripts/, tests/fuzz/, tools/)
+std::string source_dir();  // the checkout's root (examples/, scripts/, tests/fuzz/, eval/)
 std::string data_dir();    // the sample data (bunny.ply), set up by scripts/setup.sh
 
 }  // namespace slim::test

@@ -54,11 +54,11 @@ EmbeddedDomain build_and_embed(const CheckedSurface& surface, Build&& build,
 }  // namespace
 
 EmbeddedDomain embedded_domain(const CheckedSurface& surface, const Eigen::Vector3d& d, DomainKind kind, int resolution,
-                               double max_memory_bytes, const std::function<void(double, const std::string&)>& report) {
+                               std::optional<double> max_memory_bytes, const std::function<void(double, const std::string&)>& report) {
   if (kind == DomainKind::Voxel) {
     VoxelDomainOptions vo;
     vo.resolution = resolution;
-    if (max_memory_bytes > 0.0) vo.max_bytes = std::min(vo.max_bytes, max_memory_bytes);
+    if (max_memory_bytes) vo.max_bytes = std::min(vo.max_bytes, *max_memory_bytes);
     return build_and_embed(surface, [&] { return voxel_domain(surface, d, vo); }, report);
   }
   require_referenced_vertices(surface.get());

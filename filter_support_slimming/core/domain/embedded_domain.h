@@ -1,13 +1,13 @@
 // The optimizer's domain with the surface embedded in it: the voxel or TetGen tet mesh, which of
 // its vertices rest on the build plate, and the embedding (paper §II).
 //
-//   EmbeddedDomain domain = embedded_domain(surface, d, options, report);
+//   EmbeddedDomain domain = embedded_domain(surface, d, kind, resolution, max_memory_bytes, report);
 //
 // Inputs
 //   surface  a checked surface (checked_surface.h), #V by 3 mm, #F by 3.
 //   d        the unit print direction.
 //   kind, resolution  the domain (Voxel or TetGen) and, for voxels, the cells along the longest side.
-//   max_memory_bytes  the run's memory budget (<= 0: none), which caps the voxel domain's own
+//   max_memory_bytes  the run's memory budget (none: no budget), which caps the voxel domain's own
 //            worst-case guard (voxel_budget.h).
 //   report   called once between the domain and the embedding (fraction 0.02); it may throw
 //            (Cancelled) to stop there.
@@ -19,6 +19,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -38,6 +39,6 @@ struct EmbeddedDomain {
 };
 
 EmbeddedDomain embedded_domain(const CheckedSurface& surface, const Eigen::Vector3d& d, DomainKind kind, int resolution,
-                               double max_memory_bytes, const std::function<void(double, const std::string&)>& report);
+                               std::optional<double> max_memory_bytes, const std::function<void(double, const std::string&)>& report);
 
 }  // namespace slim

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/geometry/surface_intersections.h"
-#include "core/print/overhang.h"
+#include "core/print/print_setup.h"
 
 #ifdef SLIM_HAVE_TETGEN
 #include <signal.h>
@@ -239,7 +239,7 @@ TetgenDomain tetgen_domain(const CheckedSurface& checked, const Eigen::Vector3d&
                      input_vertex, dom.mesh);
   const Eigen::VectorXd height = dom.mesh.V * d;
   dom.plate_height = height.minCoeff();
-  const double diag = (dom.mesh.V.colwise().maxCoeff() - dom.mesh.V.colwise().minCoeff()).norm();
+  const double diag = bbox_diagonal(dom.mesh.V);
   dom.on_plate = height.array() <= dom.plate_height + 1e-9 * diag;
   return dom;
 }

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "core/domain/voxel_grid.h"
-#include "core/print/overhang.h"
+#include "core/print/print_setup.h"
 
 namespace slim {
 

@@ -5,7 +5,7 @@
 #include <climits>
 #include <cmath>
 
-#include "core/print/overhang.h"
+#include "core/print/print_setup.h"
 
 namespace slim {
 

@@ -62,8 +62,9 @@
 namespace slim {
 
 struct VoxelDomainOptions {
-  // Cells along the longest side of the bounding box, measured in the grid frame. 24 gives the
-  // sample bunny (1,839 vertices, 3,674 faces) 3,738 cells: 4,899 domain vertices, 22,428 tets.
+  // Cells along the longest side of the bounding box, measured in the grid frame. 24 is the
+  // coarsest rung of the slimming's resolution ladder (slimming_options.h): a compact part gets a
+  // few thousand cells, cheap to factor.
   int resolution = 24;
   // Budget for the domain and its embedding in bytes, worst case (all cells kept, about 140 bytes
   // per cell): 2 GB, about 14M cells, a resolution of about 240 for a cube. Above: DomainTooLarge.

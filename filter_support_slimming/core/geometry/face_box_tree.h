@@ -15,9 +15,10 @@
 //   faces a leaf. A query visits the nearer child first and passes over a box farther than the
 //   nearest face found, so a point far from the surface (a sample of a slimmed part that slid
 //   further than the Hausdorff distance) costs about as little as one near it. A uniform grid's
-//   shells of cells (uniform_grid.h) cost the cube of that distance in cells: at 1.1M faces the
-//   Hausdorff distance took 2.7 s with them. Cost: O(#F log #F) to build, its subtrees as OpenMP
-//   tasks (the same tree on any thread count); fewer than #F / 2 boxes.
+//   shells of cells (uniform_grid.h) cost the cube of that distance in cells, too slow for the
+//   Hausdorff distance of a million-face part (docs/history/speed-earlier.md). Cost: O(#F log #F)
+//   to build, its subtrees as OpenMP tasks (the same tree on any thread count); fewer than #F / 2
+//   boxes.
 // Refit (a surface with the same faces, other positions: the same mesh moved): the splits are
 //   kept and only the boxes made anew, leaves first, in O(#F). The distances are as exact as on a
 //   tree of its own; a query only visits more boxes where the faces moved far from where they

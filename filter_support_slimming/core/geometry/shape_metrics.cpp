@@ -24,7 +24,7 @@ struct HalfEdge {
 };
 
 // Sorted by (lo, hi, face): a counting sort by the lower vertex, then each vertex's few half-edges
-// (one std::sort of them all took most of a crease meter's set-up at 940k faces).
+// (one std::sort of them all would be most of a crease meter's set-up on a large part).
 std::vector<HalfEdge> sorted_half_edges(const Triangles& F) {
   const int vertices = F.size() > 0 ? F.maxCoeff() + 1 : 0;
   std::vector<int> begin(static_cast<size_t>(vertices) + 1, 0);

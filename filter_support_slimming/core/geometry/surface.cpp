@@ -26,6 +26,11 @@ Eigen::VectorXd face_areas(const Surface& s) {
   return a;
 }
 
+double bbox_diagonal(const Points& V) {
+  if (V.rows() == 0) return 0.0;
+  return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+}
+
 void check_surface(const Surface& s) {
   if (!s.V.allFinite())
     for (Eigen::Index v = 0; v < s.V.rows(); ++v)

@@ -44,6 +44,11 @@ Points face_normals(const Points& V, const Triangles& F);  // the same, for posi
 // #F areas, in squared mesh units.
 Eigen::VectorXd face_areas(const Surface& s);
 
+// The length of the bounding box's diagonal of the positions V (#V by 3, mm): the part's size,
+// which relative settings (the deviation budget as a share, the automatic plate tolerance) are
+// shares of. 0 for no vertex.
+double bbox_diagonal(const Points& V);
+
 // Throws std::invalid_argument with a readable reason (naming the first bad vertex or face) when
 // F indexes outside V or V has a non-finite coordinate. Everything downstream assumes a surface
 // that passed this.

@@ -12,7 +12,7 @@
 // Exact point-to-triangle distances (the closest point on each candidate triangle), the candidates
 // from a tree of the other surface's face boxes (face_box_tree.h), so the cost is about
 // O((#V + #F) log) rather than O(#V #F). Deterministic; parallel over the samples.
-// tools/hausdorff.sh measures the same with MeshLab's filter (its 100,000 samples on faces, edges
+// eval/studies/hausdorff.sh measures the same with MeshLab's filter (its 100,000 samples on faces, edges
 // and vertices): the two agree to the sampling's resolution.
 #pragma once
 
@@ -34,8 +34,9 @@ SurfaceDistance surface_distance(const Surface& a, const Surface& b);
 // The vertices and the faces (whose samples move at most as far as their corner that moved most)
 // are searched both ways from the one that moved most down to the first that moved less than the
 // largest distance found, which no later one can exceed; no sample is made or sorted before it is
-// needed. Only the samples that moved most are searched (a 940k-face bunny slimmed at 5%: the full
-// search took 95 s). Throws std::invalid_argument when b is not a's mesh.
+// needed. Only the samples that moved most are searched (a full search from every sample is far too
+// slow on a million-face part: docs/history/speed-earlier.md). Throws std::invalid_argument when b
+// is not a's mesh.
 double hausdorff_of_moved(const Surface& a, const Surface& b);
 
 }  // namespace slim

@@ -52,9 +52,10 @@ using TetPieces = std::vector<std::vector<std::pair<int, double>>>;  // #T lists
 // that makes the kept one safe leaves the others at most this far (in n·d) past the threshold:
 // 6e-5 degrees, against the slicer's own 1° and the step's aim of 10° past. Faces of one plane
 // differ by more than the minimal rotation's own tolerance (1e-12) once their vertices were stored
-// as floats (1e-7 to 1e-5 apart when a mesh was subdivided in MeshLab): merged at that tolerance,
-// the 1.1M-face bunny subdivided in MeshLab kept 108 normals a tet and its local step took 0.70 s;
-// merged here, 0.50 s, its figures the same to 1e-6 and the corpus's to 1e-4.
+// as floats (as MeshLab stores a subdivided mesh): merged at that tolerance, a dense subdivided
+// part keeps its near-copies of one normal as separate constraints and its local step is slower;
+// merged here, the step is faster and the figures do not change beyond rounding
+// (docs/history/speed.md).
 inline constexpr double kPieceMergeTolerance = 1e-6;
 
 // The pieces as described above; plate: #F, the faces resting on the build plate.

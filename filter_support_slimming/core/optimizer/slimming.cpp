@@ -12,7 +12,7 @@
 #include "core/geometry/shape_metrics.h"
 #include "core/optimizer/resolution_ladder.h"
 #include "core/optimizer/result_choice.h"
-#include "core/optimizer/slimmer.h"
+#include "core/optimizer/support_slimmer.h"
 #include "core/platform/parallel_for.h"
 #include "core/support_model/support_model.h"
 
@@ -25,41 +25,6 @@
 
 namespace slim {
 namespace {
-
-void validate_coherence(const CoherenceOptions& c) {
-  if (!(c.interior_weight > 0.0 && std::isfinite(c.interior_weight)) || !(c.risky_boost > 0.0 && std::isfinite(c.risky_boost)))
-    throw std::invalid_argument("the coherent weight factors must be finite and positive");
-  if (!(c.smoothing >= 0.0 && c.smoothing <= 1.0) || !(c.propagation >= 0.0 && c.propagation <= 1.0))
-    throw std::invalid_argument("the coherent smoothing and propagation shares must be in [0, 1]");
-  if (!(c.flat_overhang_deg >= 0.0 && c.flat_overhang_deg < 90.0))
-    throw std::invalid_argument("the flat-overhang angle must be in [0, 90) degrees");
-  if (!(c.edge_turn_slack_deg >= 0.0 && c.edge_turn_slack_deg <= 180.0))
-    throw std::invalid_argument("the edge-turn slack must be in [0, 180] degrees");
-  if (!(c.max_step_deg > 0.0 && c.max_step_deg <= 180.0))
-    throw std::invalid_argument("the coherent rotation step cap must be in (0, 180] degrees");
-  if (!(c.margin_deg >= 0.0 && c.margin_deg < 45.0)) throw std::invalid_argument("the coherent angular margin must be in [0, 45) degrees");
-  if (!(c.max_crease_share_pct >= 0.0 && c.max_crease_share_pct <= 100.0))
-    throw std::invalid_argument("the crease share limit must be in [0, 100] % (0: no limit)");
-  if (!(c.min_support_saving_pct >= 0.0 && c.min_support_saving_pct < 100.0))
-    throw std::invalid_argument("the least support saving must be in [0, 100) % (0: any saving)");
-  for (double multiple : c.resolution_ladder)
-    if (!(multiple > 1.0 && multiple <= 4.0)) throw std::invalid_argument("the resolution ladder's multiples must be in (1, 4]");
-  if (c.resolution_ladder_max_faces < 0) throw std::invalid_argument("the resolution ladder's face cap must be 0 or more");
-}
-
-void validate_options(const Surface& input, const SlimmingOptions& o) {
-  if (o.max_iterations < 0) throw std::invalid_argument("the iteration limit must be 0 or more");
-  if (o.resolution < 1) throw std::invalid_argument("the voxel resolution must be at least 1 cell");
-  if (o.max_k < 1) throw std::invalid_argument("the largest number of K-means proxies must be at least 1");
-  if (!(o.margin_deg < 45.0)) throw std::invalid_argument("the angular margin must be in [0, 45) degrees (< 0: the method's)");
-  if (!(o.max_step_deg <= 180.0)) throw std::invalid_argument("the rotation step cap must be at most 180 degrees (0: the method's)");
-  if (!std::isfinite(o.max_deviation_pct)) throw std::invalid_argument("the deviation budget must be a finite percentage");
-  if (!std::isfinite(o.max_deviation_mm) || o.max_deviation_mm < 0.0)
-    throw std::invalid_argument("the deviation budget in mm must be finite and 0 (none) or more");
-  if (!o.rigid_features.empty() && o.rigid_features.size() != static_cast<size_t>(input.F.rows()))
-    throw std::invalid_argument("the rigid-feature marks must have one entry per face");
-  validate_coherence(o.coherence);
-}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -97,36 +62,32 @@ std::string embed_and_write_back(const Surface& input, const EmbeddedDomain& dom
 }
 
 // The support model's estimate for positions of the input's mesh (mm³): the mean over grid phases
-// and the slicer's own phase; 0 when the run does not measure it (no model), and `unmeasurable`
-// when the model refuses the surface (a part with no height, say): the input is then judged by the
-// shadow volume alone, an iterate never chosen.
-struct Support {
+// and the slicer's own phase; none when the model refuses the surface (a part with no height, say).
+struct ModelledSupport {
   double mean = 0.0, slicer_phase = 0.0;
 };
-Support support_estimate(SupportModel* model, const Points& V, const SlimmingOptions& o, double unmeasurable) {
-  if (!model) return {};
+std::optional<ModelledSupport> modelled_support(SupportModel& model, const Points& V, const SlimmingOptions& o) {
   SupportModelOptions m;
-  m.print_direction = o.print_direction;
-  m.alpha_max_deg = o.alpha_max_deg;
+  m.print = o.print;
   m.threads = o.threads;
   try {
-    const SupportEstimate e = model->estimate(V, m);
-    return {e.volume_mm3, e.phase_mm3.front()};  // phase 0: the cells as the slicer lays them
+    const SupportEstimate e = model.estimate(V, m);
+    return ModelledSupport{e.volume_mm3, e.phase_mm3.front()};  // phase 0: the cells as the slicer lays them
   } catch (const std::invalid_argument&) {
-    return {unmeasurable, unmeasurable};
+    return std::nullopt;
   }
 }
 
 // What the choice of iterate did, for the stop reason: the iterates the crease limit turned away,
 // and why the input comes back when no iterate was chosen; "" when there is nothing to say.
-std::string choice_note(const IterateChoice& choice, const CoherenceOptions& c, const SlimmingResult& r) {
+std::string choice_note(const IterateChoice& choice, const ResultChoiceOptions& c, const SlimmingResult& r) {
   char note[400] = "";
   if (choice.passed_over() > 0)
     std::snprintf(note, sizeof note, "; %d iterate%s that needed less support creased more than the limit (%.3g%% of the edge length)",
-                  choice.passed_over(), choice.passed_over() == 1 ? "" : "s", c.max_crease_share_pct);
+                  choice.passed_over(), choice.passed_over() == 1 ? "" : "s", c.max_crease_share_pct.value_or(0.0));
   std::string why = note;
   if (r.iterations > 0) return why;
-  const bool by_model = r.support_before_mm3 > 0.0;
+  const bool by_model = r.judged_by == ResultJudge::SupportModel;
   // Iterates the crease limit turned away did need less support: what follows is of the others.
   const std::string iterates = choice.passed_over() > 0 ? "iterates within the crease limit" : "iterates";
   if (by_model && choice.best_unsaved_pct() > 0.0) {
@@ -140,31 +101,32 @@ std::string choice_note(const IterateChoice& choice, const CoherenceOptions& c, 
          "), so the input is returned unchanged";
 }
 
-// The iterations under the stopping rule; the best iterate goes into r.
-// The crease meter is the run's: after the iterations it measures the result too (slim_oriented).
+// The iterations under the stopping rule; the best iterate goes into r. `model` is the support
+// model when it judges (r.judged_by), else null. The crease meter is the run's: after the
+// iterations it measures the result too (slim_at_resolution).
 std::string iterate(SupportSlimmer& slimmer, const CreaseMeter& creases, SupportModel* model, const SlimmingOptions& o,
                     const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
-  const CoherenceOptions coherence = coherence_of(o);
-  const double max_crease = coherence.max_crease_share_pct;
-  IterateChoice choice(r.history.front(), max_crease, coherence.min_support_saving_pct);
-  for (int it = 1; it <= o.max_iterations; ++it) {
+  const ResultChoiceOptions& c = o.result;
+  IterateChoice choice(r.history.front(), r.judged_by, c.max_crease_share_pct, c.min_support_saving_pct);
+  const int max_iterations = o.steps.max_iterations;
+  for (int it = 1; it <= max_iterations; ++it) {
     r.iterations_run = it;
     IterationStats st = slimmer.step();
     st.iteration = it;
-    if (r.support_before_mm3 > 0.0) {
+    if (model) {
       const auto started = std::chrono::steady_clock::now();
-      const Support support = support_estimate(model, slimmer.surface_positions(), o, std::nan(""));
-      st.support_estimate = support.mean;
-      st.support_slicer_phase = support.slicer_phase;
+      if (const auto support = modelled_support(*model, slimmer.surface_positions(), o)) {
+        st.support_estimate = support->mean;
+        st.support_slicer_phase = support->slicer_phase;
+      }
       r.stage_seconds.support_model += seconds_since(started);
     }
-    if (max_crease > 0.0 && choice.reads_creases(st)) {
+    // An iterate that needs more support than the least so far (or than the input's less the
+    // least saving) is never chosen: its creases are not measured.
+    if (c.max_crease_share_pct && choice.reads_creases(st)) {
       const auto crease_started = std::chrono::steady_clock::now();
       st.crease_share_pct = creases.share_pct(slimmer.surface_positions());
       r.stage_seconds.creases += seconds_since(crease_started);
-    } else if (max_crease > 0.0) {
-      st.crease_share_pct = std::nan("");  // more support than the least so far (or than the
-                                           // input's less the least saving): never chosen
     }
     r.history.push_back(st);
     const double previous_deficit = r.history[r.history.size() - 2].risky_deficit;
@@ -176,64 +138,61 @@ std::string iterate(SupportSlimmer& slimmer, const CreaseMeter& creases, Support
       r.support_slicer_phase_after_mm3 = st.support_slicer_phase;
       r.iterations = it;
     }
-    report(0.1 + 0.9 * it / o.max_iterations, "iteration " + std::to_string(it) + ": risky area " + std::to_string(st.risky_area));
-    if (!slimmer.guard_stop().empty()) return slimmer.guard_stop() + choice_note(choice, coherence, r);
-    if (previous_deficit - st.risky_deficit < o.stall_tolerance * r.before.risky_deficit)
-      return "overhangs stopped improving" + choice_note(choice, coherence, r);
+    report(0.1 + 0.9 * it / max_iterations, "iteration " + std::to_string(it) + ": risky area " + std::to_string(st.risky_area));
+    if (!slimmer.guard_stop().empty()) return slimmer.guard_stop() + choice_note(choice, c, r);
+    if (previous_deficit - st.risky_deficit < o.steps.stall_tolerance * r.before.risky_deficit)
+      return "overhangs stopped improving" + choice_note(choice, c, r);
   }
-  return "iteration limit reached" + choice_note(choice, coherence, r);
+  return "iteration limit reached" + choice_note(choice, c, r);
 }
 
 // What every rung measures alike, made once per run: the input's overhangs, the support model
 // (the topology of every iterate is the input's, so its adjacency is found once) and its estimate
-// of the input, and the crease meter (it reads the input's edges: 0.4-0.6 s at 1.1M faces).
+// of the input, and the crease meter (it reads every edge of the input, a cost worth paying once).
+// The support model judges when the options ask for it and it measures the input's support as
+// more than 0 (a part with no height, or one that needs no support, is judged by the shadow
+// volume).
 struct InputMeasures {
-  InputMeasures(const CheckedSurface& checked, const SlimmingOptions& o) : diag(bbox_diagonal(checked.get())) {
+  InputMeasures(const CheckedSurface& checked, const SlimmingOptions& o) : rule(slimming_rule(checked.get(), o)) {
     const Surface& input = checked.get();
-    OverhangOptions measure;
-    measure.print_direction = unit_print_direction(o.print_direction);
-    measure.alpha_max_deg = o.alpha_max_deg;
-    measure.plate_tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * diag;
-    before = analyse_overhang(checked, measure);
-    if (coherence_of(o).choose_by_support_model) model.emplace(input.F, input.V.rows());
-    given = support_estimate(judge(), input.V, o, 0.0);
+    before = analyse_overhang(checked, rule.print);
+    if (o.result.judge == ResultJudge::SupportModel) {
+      model.emplace(input.F, input.V.rows());
+      given = modelled_support(*model, input.V, o);
+      if (!(given && given->mean > 0.0)) model.reset(), given.reset();
+    }
     const auto meter_started = std::chrono::steady_clock::now();
     creases.emplace(input);
     creases_seconds = seconds_since(meter_started);
   }
-  SupportModel* judge() { return model ? &*model : nullptr; }
+  // The support model when it judges the run, else null.
+  SupportModel* judging_model() { return model ? &*model : nullptr; }
+  ResultJudge judge() const { return model ? ResultJudge::SupportModel : ResultJudge::ShadowVolume; }
 
-  static double bbox_diagonal(const Surface& input) {
-    const double diag = (input.V.colwise().maxCoeff() - input.V.colwise().minCoeff()).norm();
-    if (!(diag > 0.0))
-      throw std::invalid_argument("the mesh has zero extent (all its vertices coincide), so there is no shape to "
-                                  "reshape; check the file and its units");
-    return diag;
-  }
-
-  double diag;
+  SlimmingRule rule;
   OverhangReport before;
   std::optional<SupportModel> model;
-  Support given;
+  std::optional<ModelledSupport> given;  // the input's, when the model judges
   std::optional<CreaseMeter> creases;
   double creases_seconds = 0.0;
 };
 
 // The run itself at one resolution, on a surface whose normals point out of the part.
-SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOptions& o, InputMeasures& in) {
+SlimmingResult slim_at_resolution(const CheckedSurface& checked, const SlimmingOptions& o, InputMeasures& in) {
   const auto start = std::chrono::steady_clock::now();
   ThreadScope threads(o.threads);
   const Surface& input = checked.get();
-  const Eigen::Vector3d d = unit_print_direction(o.print_direction);
   auto report = [&](double fraction, const std::string& message) {
     if (o.progress && !o.progress(fraction, message)) throw Cancelled();
   };
   SlimmingResult r = unchanged(input, in.before);
-  SupportModel* judge = in.judge();
-  r.support_before_mm3 = r.support_after_mm3 = r.history[0].support_estimate = in.given.mean;
-  r.support_slicer_phase_before_mm3 = r.support_slicer_phase_after_mm3 = r.history[0].support_slicer_phase = in.given.slicer_phase;
-  const double budget = deviation_budget(o, in.diag);
-  r.deviation_budget_mm = std::isfinite(budget) ? budget : 0.0;
+  r.judged_by = in.judge();
+  if (in.given) {
+    r.support_before_mm3 = r.support_after_mm3 = r.history[0].support_estimate = in.given->mean;
+    r.support_slicer_phase_before_mm3 = r.support_slicer_phase_after_mm3 = r.history[0].support_slicer_phase =
+        in.given->slicer_phase;
+  }
+  r.deviation_budget_mm = in.rule.budget_mm;
   // One crease meter for the run: the iterates' crease share, then the result's shape change on
   // every way out.
   const CreaseMeter& creases = *in.creases;
@@ -248,20 +207,20 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
   };
 
   report(0.0, "building the domain");
-  EmbeddedDomain domain = embedded_domain(checked, d, o.domain, o.resolution, o.max_memory_bytes, report);
+  EmbeddedDomain domain = embedded_domain(checked, in.rule.print.d, o.domain, o.resolution, o.guards.max_memory_bytes, report);
   r.stage_seconds.domain = domain.domain_seconds;
   r.stage_seconds.embedding = domain.embedding_seconds;
   r.domain_vertices = static_cast<int>(domain.mesh.V.rows());
   r.domain_tets = static_cast<int>(domain.mesh.T.rows());
-  if (o.max_iterations == 0) return finish(embed_and_write_back(input, domain, in.diag));
+  if (o.steps.max_iterations == 0) return finish(embed_and_write_back(input, domain, in.rule.diagonal_mm));
   if (r.before.risky_count == 0) return finish("no risky faces: nothing to do");
 
   std::string why;
   {  // The slimmer (its domain and factor are most of the run's memory) is gone before the result
      // is measured.
-    SupportSlimmer slimmer(checked, std::move(domain), r.before, o, report);
+    SupportSlimmer slimmer(checked, std::move(domain), r.before, o, in.rule, report);
     r.solver_backend = slimmer.backend_name();
-    why = iterate(slimmer, creases, judge, o, report, r);
+    why = iterate(slimmer, creases, in.judging_model(), o, report, r);
     const SlimmingStageSeconds& times = slimmer.stage_seconds();
     r.stage_seconds.factorization = times.factorization;
     r.stage_seconds.local = times.local;
@@ -273,7 +232,7 @@ SlimmingResult slim_oriented(const CheckedSurface& checked, const SlimmingOption
   return finish(why);
 }
 
-// slim_oriented at every rung of the resolution ladder; the run the support model prefers.
+// slim_at_resolution at every rung of the resolution ladder; the run the support model prefers.
 SlimmingResult slim_on_ladder(const CheckedSurface& checked, const SlimmingOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   InputMeasures in = [&] {
@@ -295,13 +254,13 @@ SlimmingResult slim_on_ladder(const CheckedSurface& checked, const SlimmingOptio
       };
     SlimmingResult r;
     try {
-      r = slim_oriented(checked, at, in);
+      r = slim_at_resolution(checked, at, in);
     } catch (const std::exception& refused) {
       // The first rung is the user's resolution: its refusal or failure is the run's. A finer
       // rung can only be refused for its size (the input and options passed the first), or fail
       // numerically; the rungs that ran still stand, so it is left out and said so.
       if (i == 0 || dynamic_cast<const Cancelled*>(&refused)) throw;
-      runs.push_back({rungs[i], 0.0, 0, refused.what()});
+      runs.push_back({rungs[i], std::nullopt, 0, refused.what()});
       continue;
     }
     runs.push_back({rungs[i], r.support_after_mm3, r.iterations, ""});
@@ -311,7 +270,7 @@ SlimmingResult slim_on_ladder(const CheckedSurface& checked, const SlimmingOptio
     total.support_model += t.support_model, total.creases += t.creases;
     // Nothing to slim (no risky faces) is the same at every resolution.
     const bool nothing_to_do = r.before.risky_count == 0;
-    if (i == 0 || prefer(r, kept)) {
+    if (i == 0 || needs_less_support(r, kept)) {
       kept = std::move(r);
       kept.resolution = o.domain == DomainKind::Voxel ? rungs[i] : 0;
     }
@@ -325,10 +284,11 @@ SlimmingResult slim_on_ladder(const CheckedSurface& checked, const SlimmingOptio
 
 }  // namespace
 
-SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& o) {
+SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& options) {
   if (input.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: Support Slimming needs a triangle mesh");
   const CheckedSurface checked(input);
-  validate_options(input, o);
+  validate_slimming_options(options, static_cast<long>(input.F.rows()));
+  const SlimmingOptions o = method_applied(options);
   // The overhang rule reads the outside from the normals. Faces that disagree along shared edges
   // leave no consistent outside: refuse, rather than bend the part to fix overhangs that are not
   // there. A closed mesh that is inside out is unambiguous: work on it turned over, and say so in

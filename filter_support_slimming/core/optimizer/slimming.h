@@ -5,7 +5,7 @@
 //      with per-iteration statistics and the overhang report of the result.
 //
 // slim_supports is the driver: it checks the input once, builds the domain (embedded_domain.h)
-// and a SupportSlimmer (slimmer.h: the precomputation; step() is one iteration), runs the
+// and a SupportSlimmer (support_slimmer.h: the precomputation; step() is one iteration), runs the
 // iterations under the stopping rule below and keeps the best iterate (result_choice.h); it does
 // so at each voxel resolution of the ladder and keeps the run whose result the support model
 // prefers (resolution_ladder.h).

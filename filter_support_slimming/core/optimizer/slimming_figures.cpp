@@ -10,13 +10,15 @@ double percent(double part, double whole) { return whole > 0.0 ? 100.0 * part / 
 
 SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& r, double reference_diagonal) {
   SlimmingFigures f;
-  f.support_estimate_before_mm3 = r.support_before_mm3;
-  f.support_estimate_after_mm3 = r.support_after_mm3;
-  if (r.support_before_mm3 > 0.0) f.support_change_pct = 100.0 * (r.support_after_mm3 / r.support_before_mm3 - 1.0);
-  f.support_slicer_phase_before_mm3 = r.support_slicer_phase_before_mm3;
-  f.support_slicer_phase_after_mm3 = r.support_slicer_phase_after_mm3;
-  if (r.support_slicer_phase_before_mm3 > 0.0)
-    f.support_slicer_phase_change_pct = 100.0 * (r.support_slicer_phase_after_mm3 / r.support_slicer_phase_before_mm3 - 1.0);
+  // The report is flat numbers: a figure not measured is 0 there.
+  f.support_estimate_before_mm3 = r.support_before_mm3.value_or(0.0);
+  f.support_estimate_after_mm3 = r.support_after_mm3.value_or(0.0);
+  if (f.support_estimate_before_mm3 > 0.0)
+    f.support_change_pct = 100.0 * (f.support_estimate_after_mm3 / f.support_estimate_before_mm3 - 1.0);
+  f.support_slicer_phase_before_mm3 = r.support_slicer_phase_before_mm3.value_or(0.0);
+  f.support_slicer_phase_after_mm3 = r.support_slicer_phase_after_mm3.value_or(0.0);
+  if (f.support_slicer_phase_before_mm3 > 0.0)
+    f.support_slicer_phase_change_pct = 100.0 * (f.support_slicer_phase_after_mm3 / f.support_slicer_phase_before_mm3 - 1.0);
   f.shadow_volume_before_mm3 = r.before.shadow_volume;
   f.shadow_volume_after_mm3 = r.after.shadow_volume;
   f.risky_area_before_mm2 = r.before.risky_area;
@@ -33,7 +35,7 @@ SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& r,
     f.max_displacement_mm = r.displacement.maxCoeff();
     f.mean_displacement_mm = r.displacement.mean();
   }
-  f.budget_mm = r.deviation_budget_mm;
+  f.budget_mm = r.deviation_budget_mm.value_or(0.0);
   f.budget_pct = percent(f.budget_mm, reference_diagonal);
   f.open_edges = r.open_edges;
   f.iterations = r.iterations;

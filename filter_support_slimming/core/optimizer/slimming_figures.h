@@ -24,6 +24,8 @@
 
 namespace slim {
 
+// A flat record of numbers, as the JSON report and MeshLab's filter outputs carry them: a figure
+// the run did not measure (SlimmingResult's none) is 0 here.
 struct SlimmingFigures {
   double support_estimate_before_mm3 = 0.0, support_estimate_after_mm3 = 0.0;
   double support_change_pct = 0.0;  // of the estimate; 0 when not measured

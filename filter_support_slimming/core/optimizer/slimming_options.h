@@ -1,29 +1,77 @@
-// Support Slimming's options (slimming.h): what the user sets, with the defaults documented beside
-// each field, and the parts of the coherent method.
+// Support Slimming's options (slimming.h), grouped by what they govern: the print, the domain, the
+// deviation budget, the steps, the coherent method's parts, the choice of result, the resolution
+// ladder, the volume, the guards. Each field's default is beside it; a setting that can be "the
+// method's own" or "none" is a std::optional or an explicit type, never a magic number.
+// method_applied() resolves the method once; the optimizer reads only what it returns.
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "core/domain/domain_options.h"
+#include "core/print/print_setup.h"
 
 namespace slim {
 
 enum class SlimmingMethod {
   Paper,    // the paper as written: per-tet minimal rotations, volume weights
-  Coherent  // the default: the paper with the parts of CoherenceOptions below
+  Coherent  // the default: the paper with the coherent parts below
 };
 
-// What the coherent method adds to the paper, part by part; each was measured on the bunny, the
-// T, the mushroom and the arch with bench/slimming_curve (docs/algorithm.md has the tables). Every
-// part has a value that turns it off; SlimmingMethod::Paper turns them all off (none()), whatever
-// is set here.
+// How far any surface vertex may move from where it was (a constraint, not a stop: every step is
+// cut back to it, step_guards.h).
+class DeviationBudget {
+ public:
+  static DeviationBudget none() { return DeviationBudget(Kind::None, 0.0); }
+  // A share of the part's bounding-box diagonal, in percent (> 0).
+  static DeviationBudget share_of_diagonal(double percent) { return DeviationBudget(Kind::Share, percent); }
+  // A length in mm (> 0): e.g. a share of the part as the user gave it before it was turned.
+  static DeviationBudget length(double mm) { return DeviationBudget(Kind::Length, mm); }
+  // The dialog's and the CLI's convention: a percentage, 0 or less for none (NaN stays a share, for
+  // validate() to refuse).
+  static DeviationBudget from_percent(double percent) { return percent <= 0.0 ? none() : share_of_diagonal(percent); }
+  // The budget in mm for a part whose bounding-box diagonal is diagonal_mm; nullopt: none.
+  std::optional<double> mm(double diagonal_mm) const {
+    if (kind_ == Kind::None) return std::nullopt;
+    return kind_ == Kind::Length ? value_ : value_ / 100.0 * diagonal_mm;
+  }
+  bool is_share() const { return kind_ == Kind::Share; }
+  // The share in percent when the budget is one, else none.
+  std::optional<double> share_percent() const { return is_share() ? std::optional<double>(value_) : std::nullopt; }
+  // Throws std::invalid_argument for a share or length that is not finite and positive.
+  void validate() const;
+
+ private:
+  enum class Kind { None, Share, Length };
+  DeviationBudget(Kind kind, double value) : kind_(kind), value_(value) {}
+  Kind kind_;
+  double value_;
+};
+
+// The iterations and the local step.
+struct StepOptions {
+  int max_iterations = 40;        // 0: embed and write back only
+  double stall_tolerance = 1e-3;  // stop when an iteration removes less than this share of the
+                                  // input's overhang deficit
+  // The local step aims at alpha_max - margin and the overhangs are measured at alpha_max
+  // (degrees, [0, 45)); none: the method's (Paper 1, Coherent 10). The slicer supports faces up to
+  // about a degree past its threshold and the global step stops short of the local targets, so a
+  // target at the threshold leaves the faces bent up just under it, still supported.
+  std::optional<double> margin_deg;
+  // Each tet's extra rotation per iteration, at most (degrees, (0, 180]); none: the method's
+  // (Paper 10, Coherent 2). Small steps let the blend and the global step keep neighbours
+  // together, so the surface bends instead of creasing where stiff tets meet the rest.
+  std::optional<double> max_step_deg;
+  int max_k = 8;                  // K-means proxies: the largest k tried
+};
+
+// What the coherent method adds to the paper's local and global steps; each part has a value that
+// turns it off, and none() turns them all off (docs/algorithm.md measures each).
 struct CoherenceOptions {
-  // The global step's weights. They are fixed before its one factorization, so they read the
-  // input's risky faces.
+  // The global step's weights, fixed before its one factorization, so they read the input's risky
+  // faces.
   double interior_weight = 0.1;  // factor on tets that hold no surface face: the surface leads and
                                  // the interior follows instead of holding it back; 1 = off
   double risky_boost = 5.0;      // factor on tets that hold faces risky at the start: their
@@ -37,123 +85,101 @@ struct CoherenceOptions {
   // down) turns about the horizontal axis that tilts it towards the nearest edge of the input's
   // flat-overhang region, when that costs at most edge_turn_slack_deg more than its minimal turn;
   // straight-down faces break their tie that way too. A flat overhang then grows a bevel or keel
-  // along its edges, which a small budget can reach. 10 degrees takes in the mushroom's cap (8);
-  // the slack must exceed the 16 degrees by which turning its inner part towards the stem costs
-  // more than turning outwards.
+  // along its edges, which a small budget can reach. The slack must exceed what turning the inner
+  // part of a wide cap towards its stem costs over turning it outwards.
   bool edge_turns = true;
   double flat_overhang_deg = 10.0;    // [0, 90)
-  double edge_turn_slack_deg = 20.0;  // >= 0
-  // The inversion guard (step_guards.h): true rolls the vertices of the tets a step would invert
-  // back and goes on; false cuts the whole step back to the largest valid fraction and stops.
-  bool local_inversion_guard = true;
-  // Keep the input's enclosed volume through every global step (volume_keeping.h): what the
-  // overhangs bent up would carve out of the part goes back where it is softest.
-  bool keep_volume = true;
-  // Each tet's extra rotation per iteration, at most (degrees), unless SlimmingOptions says
-  // otherwise: small steps let the blend and the global step keep neighbours together, so the
-  // surface bends smoothly instead of creasing where stiff risky tets meet the rest.
-  double max_step_deg = 2.0;
-  // The local step's target lies this far past alpha_max (degrees), unless SlimmingOptions says
-  // otherwise. PrusaSlicer supports faces up to 1 degree past its threshold (support_model.h), and
-  // the global step stops short of the local targets: aimed at that boundary (1 degree, the
-  // paper's method), the faces bent up stay under it and keep their support. On the corpus at 5%
-  // PrusaSlicer's support fell by 15.6% at 1 degree, 19.0% at 3, 22.9% at 10 and 22.3% at 13
-  // (organic means; docs/slicer-frontier.md). [0, 45)
-  double margin_deg = 10.0;
-  // The result is the iterate that needs the least support by the support model (support_model.h,
-  // PrusaSlicer's grid support at the print direction and alpha_max); false (and in the Paper
-  // method): by the shadow volume (result_choice.h).
-  bool choose_by_support_model = true;
-  // The shape's smoothness as a limit: an iterate whose crease share against the input (% of the
-  // interior edge length whose dihedral angle changed by more than 10 degrees, shape_metrics.h)
-  // exceeds this is never returned; 0 = off. The share grows with the iterations, and where it
-  // passes 2.5% the last steps bought little support (the corpus's spider: -15.2% modelled support
-  // at 2.4% creases, -15.7% at 3.1%; docs/slicer-frontier.md).
-  double max_crease_share_pct = 2.5;
-  // The least saving worth a change of shape: when no iterate needs at least this share (%) less
-  // support than the input by the support model, both over its grid phases and at the slicer's
-  // own phase for the part as placed (result_choice.h), the input is returned unchanged; 0 = any
-  // saving.
-  // A smaller predicted saving lies within the model's error against the slicer (2.6 points on
-  // average over the corpus's organic models, at its grid phase), and the slicers found none
-  // there: the T, Suzanne and OpenSCAD's example017, predicted 1.7-2.5%, got -0.5% to +2.7% from
-  // PrusaSlicer and up to +3.7% from Cura (docs/slicer-frontier.md). Read only when the support
-  // model chooses.
-  double min_support_saving_pct = 3.0;
-  // Slim again at these multiples of the voxel resolution and return the result the support model
-  // says needs the least support (resolution_ladder.h): 24, 32 and 48 cells by default. Read only
-  // when the support model chooses, on the voxel domain, for inputs of at most
-  // resolution_ladder_max_faces faces; empty = off (one run at the resolution).
-  std::vector<double> resolution_ladder = {4.0 / 3.0, 2.0};  // each in (1, 4]
-  long resolution_ladder_max_faces = 300000;
+  double edge_turn_slack_deg = 20.0;  // [0, 180]
 
   static CoherenceOptions none() {
     CoherenceOptions o;
     o.interior_weight = o.risky_boost = 1.0;
     o.smoothing = o.propagation = 0.0;
-    o.edge_turns = o.local_inversion_guard = o.keep_volume = o.choose_by_support_model = false;
-    o.max_step_deg = 10.0;
-    o.margin_deg = 1.0;
-    o.max_crease_share_pct = o.min_support_saving_pct = 0.0;
-    o.resolution_ladder.clear();
+    o.edge_turns = false;
     return o;
   }
 };
 
-struct SlimmingOptions {
-  // --- the print -------------------------------------------------------------------------------
-  Eigen::Vector3d print_direction = Eigen::Vector3d::UnitZ();  // any non-zero vector
-  double alpha_max_deg = 45.0;       // self-supporting angle from the vertical, [0, 90)
-  double plate_tolerance = -1.0;     // mm; < 0 means 1e-3 of the bbox diagonal
-  // --- the domain ------------------------------------------------------------------------------
-  DomainKind domain = DomainKind::Voxel;
-  int resolution = 24;               // voxel cells along the longest side of the bbox
-  // --- the optimizer ---------------------------------------------------------------------------
-  SlimmingMethod method = SlimmingMethod::Coherent;
-  int max_iterations = 40;           // 0: embed and write back only
-  double max_deviation_pct = 5.0;    // deviation budget, % of the bbox diagonal (<= 0: none)
-  double max_deviation_mm = 0.0;     // > 0: the budget as this length instead (mm), e.g. a share
-                                     // of the part as the user gave it before it was turned
-  double stall_tolerance = 1e-3;     // stop when an iteration removes less than this share of the
-                                     // initial overhang deficit
-  double margin_deg = -1.0;          // solve for alpha_max - margin, measure at alpha_max;
-                                     // < 0: the method's (Paper 1, Coherent its option above)
-  double max_step_deg = 0.0;         // cap on each tet's extra rotation per iteration (degrees);
-                                     // <= 0: the method's own (Paper 10, Coherent its option below)
-  int max_k = 8;                     // K-means proxies: the largest k tried
-  CoherenceOptions coherence;        // the coherent method's parts (ignored by Paper)
-  // --- feature preservation (§IV-B) -------------------------------------------------------------
-  // Per input face: true = part of a rigid feature. Each connected component of the marked faces
-  // is one feature that moves as a single rigid body. Empty: no features.
-  std::vector<bool> rigid_features;
-  // --- running -----------------------------------------------------------------------------------
-  int threads = 0;                   // OpenMP threads; 0: the runtime's default. Results do not
-                                     // depend on it.
-  // Memory budget, bytes (<= 0: none). After the domain is built, a run whose estimated peak
+// What judges the iterates (result_choice.h).
+enum class ResultJudge {
+  SupportModel,  // the support model's estimate of what the slicer builds (support_model.h)
+  ShadowVolume   // the volume under the overhangs (overhang.h), the cruder estimate
+};
+
+// Which iterate the run returns (result_choice.h).
+struct ResultChoiceOptions {
+  // The support model judges when it can measure the input's support (a part with no height, or
+  // one that needs none, falls back to the shadow volume).
+  ResultJudge judge = ResultJudge::SupportModel;
+  // An iterate whose crease share against the input (% of the interior edge length whose dihedral
+  // angle changed by more than 10 degrees, shape_metrics.h) exceeds this is never returned; none:
+  // no limit. The share grows with the iterations while the last steps buy little support.
+  std::optional<double> max_crease_share_pct = 2.5;  // (0, 100]
+  // The least saving worth a change of shape: when no iterate needs at least this share (%) less
+  // support than the input by the support model, both over its grid phases and at the slicer's own
+  // phase for the part as placed, the input is returned unchanged; 0: any saving. A smaller
+  // predicted saving lies within the model's error against the slicer. Read only when the support
+  // model judges.
+  double min_support_saving_pct = 3.0;  // [0, 100)
+};
+
+// Slim again at these multiples of the voxel resolution and return the result the support model
+// says needs the least support (resolution_ladder.h): 24, 32 and 48 cells by default. Read only
+// when the support model judges, on the voxel domain, for inputs of at most max_faces faces.
+struct LadderOptions {
+  std::vector<double> multiples = {4.0 / 3.0, 2.0};  // each in (1, 4]; empty: one run
+  long max_faces = 300000;                           // >= 0
+};
+
+// What protects the run and the machine.
+struct GuardOptions {
+  // The inversion guard (step_guards.h): true rolls the vertices of the tets a step would invert
+  // back and goes on; false cuts the whole step back to the largest valid fraction and stops.
+  bool local_inversion_guard = true;
+  // Memory budget (bytes); none: no budget. After the domain is built, a run whose estimated peak
   // (per-tet state and the Cholesky factor) exceeds it is refused with the largest voxel
   // resolution that fits, before anything big is allocated. Before that, the voxel domain's own
   // guard (voxel_domain.h: the worst case, every cell kept, within 2 GB or this budget if less)
   // refuses absurd resolutions at once.
-  double max_memory_bytes = 4e9;
+  std::optional<double> max_memory_bytes = 4e9;
+};
+
+struct SlimmingOptions {
+  PrintSetup print;                  // direction, alpha_max, plate rule
+  // The domain.
+  DomainKind domain = DomainKind::Voxel;
+  int resolution = 24;               // voxel cells along the longest side of the bbox, >= 1
+  // The optimizer.
+  SlimmingMethod method = SlimmingMethod::Coherent;
+  DeviationBudget budget = DeviationBudget::share_of_diagonal(5.0);
+  StepOptions steps;
+  CoherenceOptions coherence;        // read by the Coherent method only
+  ResultChoiceOptions result;
+  LadderOptions ladder;
+  // Keep the input's enclosed volume through every global step (volume_keeping.h): what the
+  // overhangs bent up would carve out of the part goes back where it is softest.
+  bool keep_volume = true;
+  GuardOptions guards;
+  // Feature preservation (§IV-B). Per input face: true = part of a rigid feature. Each connected
+  // component of the marked faces is one feature that moves as a single rigid body. Empty: none.
+  std::vector<bool> rigid_features;
+  // Running.
+  int threads = 0;                   // OpenMP threads; 0: the runtime's default. Results do not
+                                     // depend on it.
   // Called with a fraction in [0, 1] and a short message before each stage (domain, embedding,
   // factorization), after every iteration and at the end. Returning false cancels: the run throws
   // slim::Cancelled at once and no result is produced. Stages in between cannot be interrupted.
   std::function<bool(double, const std::string&)> progress;
 };
 
-// The coherent parts a run uses: options.coherence for the Coherent method, none for Paper.
-inline CoherenceOptions coherence_of(const SlimmingOptions& options) {
-  return options.method == SlimmingMethod::Coherent ? options.coherence : CoherenceOptions::none();
-}
+// The options a run reads, the method applied: for Coherent, the margin 10 and step cap 2 where
+// not set; for Paper, every coherent part off (CoherenceOptions::none()), the shadow volume as the
+// judge with no crease limit and no least saving, no ladder, no volume keeping, the whole-step
+// inversion guard, and the margin 1 and step cap 10 where not set. Every other field as given.
+SlimmingOptions method_applied(const SlimmingOptions& options);
 
-// The step cap a run uses (degrees): options.max_step_deg when set, else the method's.
-inline double max_step_of(const SlimmingOptions& options) {
-  return options.max_step_deg > 0.0 ? options.max_step_deg : coherence_of(options).max_step_deg;
-}
-
-// The angular margin a run uses (degrees): options.margin_deg when set, else the method's.
-inline double margin_of(const SlimmingOptions& options) {
-  return options.margin_deg >= 0.0 ? options.margin_deg : coherence_of(options).margin_deg;
-}
+// Throws std::invalid_argument, in words a user can act on, for a value out of its range
+// (`faces`: the input's face count, for the rigid-feature marks).
+void validate_slimming_options(const SlimmingOptions& options, long faces);
 
 }  // namespace slim

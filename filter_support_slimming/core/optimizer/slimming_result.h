@@ -3,6 +3,7 @@
 #pragma once
 
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 
 #include "core/geometry/shape_metrics.h"
 #include "core/geometry/surface.h"
+#include "core/optimizer/slimming_options.h"
 #include "core/print/overhang.h"
 
 namespace slim {
@@ -20,17 +22,18 @@ struct IterationStats {
   double risky_share = 0.0;        // of the total area
   double risky_deficit = 0.0;      // mm², see OverhangReport::risky_deficit
   double shadow_volume = 0.0;      // mm³, see OverhangReport::shadow_volume
-  // mm³: the support the slicer builds, estimated by the support model (support_model.h); 0 when
-  // the run does not measure it (CoherenceOptions::choose_by_support_model off).
-  double support_estimate = 0.0;
+  // mm³: the support the slicer builds, estimated by the support model (support_model.h), the
+  // mean over its grid phases; none when not measured (the shadow volume judges the run, or the
+  // model could not measure this iterate).
+  std::optional<double> support_estimate;
   // mm³: the same estimate at the slicer's own grid phase (its first phase, SupportEstimate::
-  // phase_mm3[0]); 0 when not measured.
-  double support_slicer_phase = 0.0;
-  // % of the interior edge length creased against the input (shape_metrics.h); 0 when the run
-  // does not measure it (CoherenceOptions::max_crease_share_pct off), NaN for an iterate that
-  // cannot be chosen, so is not measured: it needed more support than the least so far, which
-  // before any iterate qualifies is the input's less min_support_saving_pct (result_choice.h).
-  double crease_share_pct = 0.0;
+  // phase_mm3[0]); none when not measured.
+  std::optional<double> support_slicer_phase;
+  // % of the interior edge length creased against the input (shape_metrics.h); none when not
+  // measured: the run has no crease limit, or the iterate cannot be chosen (it needed more
+  // support than the least so far, which before any iterate qualifies is the input's less
+  // min_support_saving_pct, result_choice.h).
+  std::optional<double> crease_share_pct;
   double energy = 0.0;             // ARAP energy of the accepted positions for this iteration's L_t
   // The global step alone: ARAP energy for this iteration's L_t at the positions it started from,
   // and at its solution before the plate, budget and inversion guards touched it. The solution
@@ -56,15 +59,15 @@ struct SlimmingStageSeconds {  // wall time per stage, summed over iterations an
   double local = 0.0;           // polar decompositions, minimal rotations, coherence
   double global = 0.0;          // right-hand sides and back-substitutions
   double measure = 0.0;         // the step guards, write-back to the surface and the statistics
-  double support_model = 0.0;   // the support model's estimate of every iterate (choose_by_support_model)
-  double creases = 0.0;         // the crease share of the iterates that may be chosen (max_crease_share_pct)
+  double support_model = 0.0;   // the support model's estimate of every iterate (when it judges)
+  double creases = 0.0;         // the crease share of the iterates that may be chosen (the crease limit)
                                 // and the result's shape change (SlimmingResult::shape)
 };
 
 // One rung of the resolution ladder (resolution_ladder.h): a run at one voxel resolution.
 struct ResolutionRun {
   int resolution = 0;                 // voxel cells along the longest side
-  double support_after_mm3 = 0.0;     // the support model's estimate of its result (phase mean)
+  std::optional<double> support_after_mm3;  // the support model's estimate of its result (phase mean)
   int iterations = 0;                 // the iteration its result came from (0: the input)
   std::string refused;                // why it did not run or failed (a finer rung over the memory
                                       // budget, say), else empty
@@ -73,15 +76,18 @@ struct ResolutionRun {
 struct SlimmingResult {
   Surface surface;                    // the deformed mesh, same topology as the input
   OverhangReport before, after;       // measured at alpha_max
-  // The support model's estimate for the input and the result (mm³; 0 when not measured): the
-  // mean over the slicer's grid phases, which the run minimises (it must not win by moving the
-  // part against the grid).
-  double support_before_mm3 = 0.0, support_after_mm3 = 0.0;
+  // What judged the iterates: the support model when the run asked for it and it measured the
+  // input's support as more than 0, else the shadow volume (result_choice.h).
+  ResultJudge judged_by = ResultJudge::ShadowVolume;
+  // The support model's estimate for the input and the result (mm³; none when the shadow volume
+  // judged): the mean over the slicer's grid phases, which the run minimises (it must not win by
+  // moving the part against the grid).
+  std::optional<double> support_before_mm3, support_after_mm3;
   // The same at the slicer's own grid phase (PrusaSlicer centres its grid on the part's bounding
   // box), the part as placed (support lines along x): the model's prediction of what the slicer
-  // builds for these very parts (mm³; 0 when not measured). It comes with the estimates above, the
-  // first of the phases they average.
-  double support_slicer_phase_before_mm3 = 0.0, support_slicer_phase_after_mm3 = 0.0;
+  // builds for these very parts (mm³; none when not measured). It comes with the estimates above,
+  // the first of the phases they average.
+  std::optional<double> support_slicer_phase_before_mm3, support_slicer_phase_after_mm3;
   std::vector<IterationStats> history;  // history[0] is the input, one entry per kept iteration
   int iterations = 0;                 // the iteration the result comes from (0: the input)
   int iterations_run = 0;             // iterations computed, including any after the best one
@@ -96,7 +102,7 @@ struct SlimmingResult {
   // enclosed volumes in mm³ and their change, the crease share, its 99th percentile), measured
   // with the run's own crease meter.
   ShapeChange shape;
-  double deviation_budget_mm = 0.0;   // the budget the run held to (0: none)
+  std::optional<double> deviation_budget_mm;  // the budget the run held to (none: no budget)
   int domain_vertices = 0, domain_tets = 0;  // the returned run's
   int resolution = 0;                 // the returned run's voxel resolution (0: the TetGen domain)
   std::vector<ResolutionRun> resolution_runs;  // every rung slimmed at, in order (one without a ladder)

@@ -52,8 +52,8 @@ struct FaceGroups {
 
 // A group's faces go through its node triples when these are no more than this many per face;
 // else face by face (a coarse surface in a fine domain: a face's corners in three tets apart, 220
-// triples for one face). Measured: 2 and 4 alike on the 55k-vertex domain of the 3,674-face
-// bunny; 4 the faster on the 1.1M-face bunny (its global step 0.11 -> 0.09 s).
+// triples for one face). 4 rather than 2: alike on a small part, and the faster global step on a
+// million-face one (docs/history/speed.md).
 constexpr int kTriplesPerFace = 4;
 
 struct TetsHash {

@@ -22,8 +22,8 @@
 //   volume, e.g. every vertex held). The volume is exactly a cubic in lambda; Newton's method on
 //   it, from 0, until the volume is within 1e-12 of the target or after 20 steps.
 // Why the pressure's direction is taken at the start of the step and not at the minimiser: its
-//   response then shares the global step's back-substitution (six right-hand sides in one sweep:
-//   22 ms against two sweeps of three, 32 ms, on a 50k-vertex domain, bench/arap_bench); with
+//   response then shares the global step's back-substitution (six right-hand sides in one sweep
+//   cost less than two sweeps of three: docs/speed.md, bench/arap_bench); with
 //   steps of a few degrees the surface's normals barely differ, and Newton's method still meets
 //   the target exactly.
 // How, on the domain alone: the surface is the domain's vertices through fixed weights, so its
@@ -37,16 +37,16 @@
 // Cost: the set-up groups the faces by the tets their corners lie in (one pass, a hash of the
 //   faces across tets), sums each group's minors over its faces on the threads, and merges the
 //   triples that groups share (a counting sort by node); each step is then one pass over the
-//   triples for the load and one for the cubic. The 1.1M-face bunny at the default resolution
-//   (23k tets): 55k groups, most by their triples (merged into about 100k), set-up 0.18 s, the
-//   global step 0.71 -> 0.09 s over 18 steps; the 3,674-face bunny in a 55k-vertex domain: every
-//   face by itself, as fast as before (bench/slimming_stages). Sums run in face order within a
-//   group, in group order across groups and in face order for the faces by themselves: the same
-//   bits on any thread count.
+//   triples for the load and one for the cubic. A dense surface in a coarse domain goes mostly by
+//   its groups' triples, so a step costs the domain's size and not the surface's; a coarse surface
+//   in a fine domain goes face by face, as fast as summing the faces (docs/history/speed.md,
+//   bench/slimming_stages). Sums run in face order within a group, in group order across groups
+//   and in face order for the faces by themselves: the same bits on any thread count.
 // Why a pressure: ARAP's targets are rotations, which keep each tet's volume, but the blend of
-// incompatible rotations compresses: the overhangs bent up were carved into the part (the coherent
-// method lost 7.5% of the volume of the corpus's organic models). The pressure puts that volume
-// back where the part is softest, spread by the same stiffness that blends the rotations.
+// incompatible rotations compresses: the overhangs bent up were carved into the part, and organic
+// parts lost a visible share of their volume (docs/history/slicer-frontier-baseline.md). The
+// pressure puts that volume back where the part is softest, spread by the same stiffness that
+// blends the rotations.
 #pragma once
 
 #include <array>

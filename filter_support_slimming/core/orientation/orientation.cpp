@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -80,31 +81,33 @@ void choose_best(const OrientationGeometry& g, const OrientationOptions& o, cons
 // support wins. Supports within 1% + 1 mm³ of the least (the model's phase noise) are a tie the
 // model cannot break; there the pose that rests more of the part on the plate wins (what the
 // score's contact bonus is for, and what the model does not see), then the pose as given, then the
-// better score. The shadow volume, the proxy the model replaces, decides nothing there: on its side
-// the corpus's duck casts less shadow and needs 0.1% less by the model, but 4.3% more by PrusaSlicer,
-// and touches the plate at a point instead of resting on its flat underside.
+// better score. The shadow volume, the proxy the model replaces, decides nothing there: a pose can
+// cast less shadow and need a little less support by the model, yet more by the slicer, while it
+// touches the plate at a point instead of resting on a flat underside (docs/orientation.md).
 void judge_by_support(const Surface& oriented, const OrientationOptions& o, OrientationResult& result) {
   const size_t judged = std::min(result.top.size(), static_cast<size_t>(std::max(0, o.support_model_candidates)));
   if (judged == 0) return;
   SupportModel model(oriented.F, oriented.V.rows());  // one mesh in every pose
   auto estimate = [&](OrientationCandidate& c) {
     SupportModelOptions m;
-    m.print_direction = c.direction;
-    m.alpha_max_deg = o.alpha_max_deg;
+    m.print.direction = c.direction;
+    m.print.alpha_max_deg = o.alpha_max_deg;
     try {
       c.support_estimate = model.estimate(oriented.V, m).volume_mm3;
     } catch (const std::invalid_argument&) {
-      c.support_estimate = -1.0;  // the model cannot judge this pose (no height): the score stands
+      c.support_estimate.reset();  // the model cannot judge this pose (no height): the score stands
     }
   };
   estimate(result.as_given);
   for (size_t k = 0; k < judged; ++k) estimate(result.top[k]);
-  double least = result.as_given.support_estimate;
-  for (size_t k = 0; k < judged; ++k)
-    if (result.top[k].support_estimate >= 0.0 && (least < 0.0 || result.top[k].support_estimate < least))
-      least = result.top[k].support_estimate;
-  if (least < 0.0) return;  // nothing measurable: the score's order stands
-  auto tied = [&](const OrientationCandidate& c) { return c.support_estimate >= 0.0 && c.support_estimate <= least * 1.01 + 1.0; };
+  std::optional<double> measured_least = result.as_given.support_estimate;
+  for (size_t k = 0; k < judged; ++k) {
+    const std::optional<double>& support = result.top[k].support_estimate;
+    if (support && (!measured_least || *support < *measured_least)) measured_least = support;
+  }
+  if (!measured_least) return;  // nothing measurable: the score's order stands
+  const double least = *measured_least;
+  auto tied = [&](const OrientationCandidate& c) { return c.support_estimate && *c.support_estimate <= least * 1.01 + 1.0; };
   auto rests_more = [](const OrientationCandidate& a, const OrientationCandidate& b) {
     return a.contact_area > b.contact_area * (1.0 + 1e-9) + 1e-12;
   };
@@ -168,7 +171,7 @@ OrientationResult optimize_orientation(const CheckedSurface& surface, const Orie
   ThreadScope threads(o.threads);
   OrientationResult result;
   const OrientationGeometry g = orientation_geometry(surface, o, true, result.inside_out);
-  result.plate_tolerance = g.tolerance;
+  result.plate_tolerance_mm = g.tolerance;
   result.contact_bonus_height = g.bonus_height;
   result.hull_facets = static_cast<int>(g.hull.facets.size());
 
@@ -209,10 +212,10 @@ Surface apply_orientation(const Surface& surface, const Eigen::Matrix3d& rotatio
 }
 
 OverhangReport print_pose_overhang(const Surface& posed, const OrientationResult& result, double alpha_max_deg) {
-  OverhangOptions o;
-  o.alpha_max_deg = alpha_max_deg;
-  o.plate_tolerance = result.plate_tolerance;
-  return analyse_overhang(result.inside_out ? flipped(posed) : posed, o);
+  PrintSetup print;
+  print.alpha_max_deg = alpha_max_deg;
+  print.plate = plate_rule_as_used(result);
+  return analyse_overhang(result.inside_out ? flipped(posed) : posed, print);
 }
 
 }  // namespace slim

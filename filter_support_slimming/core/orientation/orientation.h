@@ -18,8 +18,8 @@
 // not rest on the plate; plate(d) = min over vertices of v·d; a face rests on the plate when its
 // three vertices lie within plate_tolerance of it; c_f is its centroid. It is the volume of the
 // prisms between each overhang and the plate: a slicer's support columns, ignoring that they
-// stand on the part itself in places. (Issue 8 measured it against PrusaSlicer on 18 meshes:
-// Spearman 0.91, against 0.66 for the plain risky area.)
+// stand on the part itself in places. (It ranks poses by PrusaSlicer's support far better than the
+// plain risky area does: docs/orientation.md.)
 //
 //   contact_area(d) = the area of the faces resting on the plate
 //
@@ -54,6 +54,7 @@
 // out is searched turned over (OrientationResult::inside_out).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,7 +71,9 @@ enum class OrientationEffort { Fast, Normal, Thorough };
 
 struct OrientationOptions {
   double alpha_max_deg = 45.0;      // self-supporting angle from the vertical, [0, 90)
-  double plate_tolerance = -1.0;    // mm; < 0 means 1e-3 of the bbox diagonal of the part as given
+  // Which faces rest on the plate; automatic: 1e-3 of the bbox diagonal of the part as given, one
+  // length for every pose.
+  PlateRule plate = PlateRule::automatic();
   double contact_bonus = 0.01;      // bonus height as a share of the part size, >= 0
   int sphere_candidates = 4000;     // Fibonacci directions, >= 1
   int flat_regions = 32;            // largest flat regions tried face down and face up, >= 0
@@ -97,7 +100,7 @@ struct OrientationCandidate {
   double shadow_volume = 0.0;  // mm³
   double contact_area = 0.0;   // mm², faces resting on the plate
   double risky_area = 0.0;     // mm², risky faces (as in OverhangReport::risky_area)
-  double support_estimate = -1.0;  // mm³, the support model's estimate; -1: not judged by it
+  std::optional<double> support_estimate;  // mm³, the support model's estimate; none: not judged by it
   std::string origin;          // "as given", "sphere", "flat face down", "flat face up", "hull facet", or
                                // one of those followed by " refined"
 };
@@ -108,7 +111,7 @@ struct OrientationResult {
   OrientationCandidate as_given;          // the input's own pose, d = +Z
   std::vector<OrientationCandidate> top;  // best first, pairwise >= distinct_deg apart
   double contact_bonus_height = 0.0;      // mm, as used in the score
-  double plate_tolerance = 0.0;           // mm, as used
+  std::optional<double> plate_tolerance_mm;  // mm, as used; none: no plate rule
   int candidates = 0;                     // directions scored, refinement included
   int hull_facets = 0;                    // facets of the convex hull (0: it could not be built)
   bool inside_out = false;                // searched with the faces turned over
@@ -134,6 +137,12 @@ Eigen::Matrix<double, 3, 4> print_placement(const Surface& surface, const Eigen:
 
 // The surface in its print pose (print_placement applied to every vertex; faces unchanged).
 Surface apply_orientation(const Surface& surface, const Eigen::Matrix3d& rotation);
+
+// The plate rule the search used, as a rule to hand on: the slimming in the chosen pose then sees
+// the plate as the search did.
+inline PlateRule plate_rule_as_used(const OrientationResult& result) {
+  return result.plate_tolerance_mm ? PlateRule::within(*result.plate_tolerance_mm) : PlateRule::none();
+}
 
 // The overhangs of `posed` (apply_orientation(input, result.rotation)) for print direction +Z,
 // with the search's plate tolerance, turned over when the input was inside out: what the result

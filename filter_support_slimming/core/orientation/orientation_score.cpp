@@ -33,7 +33,7 @@ double radians(double degrees) { return degrees * M_PI / 180.0; }
 
 void check_options(const OrientationOptions& o) {
   self_supporting_tau(o.alpha_max_deg);
-  if (!std::isfinite(o.plate_tolerance)) throw std::invalid_argument("the build plate tolerance must be finite");
+  o.plate.tolerance_mm(1.0);  // refuses a bad tolerance before any work
   if (!(o.contact_bonus >= 0.0 && std::isfinite(o.contact_bonus)))
     throw std::invalid_argument("the plate contact bonus must be a finite share >= 0");
   if (o.sphere_candidates < 1 || o.sphere_candidates > 10000000)
@@ -156,7 +156,7 @@ FaceSums sweep_sums(const OrientationGeometry& g, const Eigen::Vector3d& d, doub
         sums.shadow += -(g.area[i] * nd) * h;
         sums.risky_area += g.area[i];
       }
-      if (h <= g.tolerance) sums.near_area += g.area[i];
+      if (g.tolerance && h <= *g.tolerance) sums.near_area += g.area[i];
     }
   }
   return sums;
@@ -207,10 +207,9 @@ OrientationGeometry orientation_geometry(const CheckedSurface& checked, const Or
   g.total_area = a.sum();
   if (!(g.total_area > 0.0)) throw std::invalid_argument("every face has zero area: there is no surface to orient");
   g.tau = self_supporting_tau(o.alpha_max_deg);
-  // The default is Support Slimming's (slimming.h): 1e-3 of the bounding-box diagonal of the part as
-  // given, one length for every pose, so that the slimming in the chosen pose sees the plate as
-  // the search did, and a part left as given is slimmed as it is without the search.
-  g.tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm();
+  // Of the part as given, one length for every pose, so that the slimming in the chosen pose sees
+  // the plate as the search did, and a part left as given is slimmed as it is without the search.
+  g.tolerance = o.plate.tolerance_mm(bbox_diagonal(s.V));
   g.bonus_height = o.contact_bonus * g.size;
   bin_faces(s, n, a, g);
   if (with_hull) build_hull(g);

@@ -22,6 +22,7 @@
 // closed mesh whose normals all point inwards (its normals are then turned over).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -68,7 +69,8 @@ struct OrientationGeometry {
   std::vector<int> adjacency_start, adjacency;
   Eigen::Matrix3Xd anchors;
   std::vector<int> anchor_lowest;
-  double size = 0.0, total_area = 0.0, tau = 0.0, tolerance = 0.0, bonus_height = 0.0;
+  double size = 0.0, total_area = 0.0, tau = 0.0, bonus_height = 0.0;
+  std::optional<double> tolerance;  // mm, the plate rule's; none: no face rests on the plate
 };
 
 // The cell of a unit vector on a cube map with R by R cells on each of the cube's six faces.

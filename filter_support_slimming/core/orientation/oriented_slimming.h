@@ -14,13 +14,14 @@
 //   posed        the part turned rigidly into its print pose: +Z up, resting on z = 0.
 //   slimming     Support Slimming of `posed` along +Z: its displacement and volume change count
 //                the deformation alone, measured in that pose.
-// The build plate tolerance: the one given (>= 0) serves both steps; a negative one lets the
-// search choose its default (1e-3 of the part's size) and the slimming then uses the same.
-// The deviation budget: a percentage is of the bbox diagonal of the part as given, turned into a
-// length (max_deviation_mm), so that the same part gets the same allowance whatever pose the
-// search picks.
+// The build plate rule: the search resolves it on the part as given (the automatic rule: 1e-3 of
+// its size) and the slimming uses the same tolerance.
+// The deviation budget: a share of the diagonal is of the part as given, turned into a length,
+// so that the same part gets the same allowance whatever pose the search picks.
 // Errors: those of optimize_orientation and slim_supports.
 #pragma once
+
+#include <optional>
 
 #include "core/optimizer/slimming.h"
 #include "core/orientation/orientation.h"
@@ -34,5 +35,10 @@ struct OrientedSlimming {
 };
 
 OrientedSlimming slim_in_best_pose(const Surface& surface, SlimmingOptions slimming, OrientationOptions orientation);
+
+// The job as the user asked for it: slim_in_best_pose when `orientation` is given, else Support
+// Slimming of the part as given (posed = surface, orientation left at its defaults).
+OrientedSlimming slim_as_asked(const Surface& surface, const SlimmingOptions& slimming,
+                               const std::optional<OrientationOptions>& orientation);
 
 }  // namespace slim

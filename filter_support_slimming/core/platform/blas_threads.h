@@ -2,11 +2,11 @@
 // object and restored after (threads <= 0, or a BLAS that is not OpenBLAS: nothing is changed).
 //
 // Why: OpenBLAS splits its kernels across threads, and the split changes the rounding: CHOLMOD's
-// supernodal factorization gave different bits with OPENBLAS_NUM_THREADS=1 and 2 (box grids of 2k
-// to 50k vertices; the same count always repeats exactly). The optimizer's stopping rule reads
-// statistics that must repeat, so the global step holds BLAS at one thread around CHOLMOD's
-// calls. One thread also keeps OpenBLAS's workers from spinning on the second core after the
-// factorization, which slowed the first iterations' OpenMP loops by half (55k-vertex domain).
+// supernodal factorization gave different bits with OPENBLAS_NUM_THREADS=1 and 2 (the same count
+// always repeats exactly). The optimizer's stopping rule reads statistics that must repeat, so the
+// global step holds BLAS at one thread around CHOLMOD's calls. One thread also keeps OpenBLAS's
+// workers from spinning on the second core after the factorization, which slowed the first
+// iterations' OpenMP loops.
 //
 // The functions are looked up at run time: they exist only when the BLAS behind CHOLMOD is
 // OpenBLAS. A plugin's dependencies are loaded with RTLD_LOCAL and are invisible to RTLD_DEFAULT,

@@ -10,30 +10,17 @@
 
 namespace slim {
 
-double self_supporting_tau(double alpha_max_deg) {
-  if (!(alpha_max_deg >= 0.0 && alpha_max_deg < 90.0))
-    throw std::invalid_argument("the self-supporting angle must be in [0, 90) degrees, got " +
-                                std::to_string(alpha_max_deg));
-  return std::sin(alpha_max_deg * M_PI / 180.0);
-}
-
-Eigen::Vector3d unit_print_direction(const Eigen::Vector3d& d) {
-  const double len = d.norm();
-  if (!std::isfinite(len) || len < 1e-12)
-    throw std::invalid_argument("the print direction must be a non-zero vector");
-  return d / len;
-}
-
-OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options) {
+OverhangReport analyse_overhang(const Surface& s, const PrintSetup& print) {
   if (s.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: there is nothing to analyse");
-  return analyse_overhang(CheckedSurface(s), options);
+  const CheckedSurface checked(s);
+  return analyse_overhang(checked, print_rule(print, bbox_diagonal(s.V)));
 }
 
-OverhangReport analyse_overhang(const CheckedSurface& checked, const OverhangOptions& options) {
+OverhangReport analyse_overhang(const CheckedSurface& checked, const PrintRule& rule) {
   const Surface& s = checked.get();
   if (s.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: there is nothing to analyse");
-  const Eigen::Vector3d d = unit_print_direction(options.print_direction);
-  const double tau = self_supporting_tau(options.alpha_max_deg);
+  const Eigen::Vector3d& d = rule.d;
+  const double tau = rule.tau;
 
   const Eigen::VectorXd height = s.V * d;  // every vertex's height along d
 
@@ -52,7 +39,7 @@ OverhangReport analyse_overhang(const CheckedSurface& checked, const OverhangOpt
     area(f) = 0.5 * cross.norm();
     r.quality(f) = n_dot_d + tau;
     const double h0 = height(s.F(f, 0)), h1 = height(s.F(f, 1)), h2 = height(s.F(f, 2));
-    support[static_cast<size_t>(f)] = face_support(h0, h1, h2, r.plate_height, options.plate_tolerance, r.quality(f));
+    support[static_cast<size_t>(f)] = face_support(h0, h1, h2, r.plate_height, rule.plate_tolerance_mm, r.quality(f));
     if (support[static_cast<size_t>(f)] == FaceSupport::Risky)
       shadow(f) = face_shadow(area(f), n_dot_d, (h0 + h1 + h2) / 3.0 - r.plate_height);
   }

@@ -6,23 +6,19 @@
 // below the horizontal is risky.
 //
 // Faces resting on the build plate are carried by it and are never risky: all three vertices lie
-// within `plate_tolerance` (mesh units, mm) of the lowest point of the mesh along d.
+// within the plate tolerance (mm, PrintSetup's plate rule) of the lowest point of the mesh along d.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "core/geometry/checked_surface.h"
 #include "core/geometry/surface.h"
+#include "core/print/print_setup.h"
 
 namespace slim {
-
-struct OverhangOptions {
-  Eigen::Vector3d print_direction = Eigen::Vector3d::UnitZ();  // any non-zero vector; normalised
-  double alpha_max_deg = 45.0;                                  // self-supporting angle, [0, 90)
-  double plate_tolerance = 1e-3;                                // mm; < 0 disables the plate rule
-};
 
 struct OverhangReport {
   Eigen::VectorXd quality;     // #F: n·d + tau (< 0 means risky); plate faces get +1
@@ -47,13 +43,14 @@ struct OverhangReport {
 // The rule for one face, the one place it is written (analyse_overhang and the orientation
 // search's exact score both apply it):
 //   h0, h1, h2  its vertices' heights along d (mm);  plate  the lowest vertex's height (mm);
-//   tolerance   the plate tolerance (mm; < 0 disables the plate rule);
+//   tolerance   the plate tolerance (mm; none: no face rests on the plate);
 //   quality     n·d + tau, its unit normal n, tau = sin(alpha_max).
 // Plate: all three vertices within tolerance of the plate. Risky: not on the plate, and
 // quality < 0.
 enum class FaceSupport { Plate, Safe, Risky };
-inline FaceSupport face_support(double h0, double h1, double h2, double plate, double tolerance, double quality) {
-  if (tolerance >= 0.0 && h0 - plate <= tolerance && h1 - plate <= tolerance && h2 - plate <= tolerance)
+inline FaceSupport face_support(double h0, double h1, double h2, double plate, const std::optional<double>& tolerance,
+                                double quality) {
+  if (tolerance && h0 - plate <= *tolerance && h1 - plate <= *tolerance && h2 - plate <= *tolerance)
     return FaceSupport::Plate;
   return quality < 0.0 ? FaceSupport::Risky : FaceSupport::Safe;
 }
@@ -64,16 +61,12 @@ inline double face_shadow(double area, double n_dot_d, double centroid_above_pla
   return area * (n_dot_d < 0.0 ? -n_dot_d : 0.0) * centroid_above_plate;
 }
 
-// tau = sin(alpha_max); throws std::invalid_argument unless 0 <= alpha_max_deg < 90.
-double self_supporting_tau(double alpha_max_deg);
-
-// Returns the unit print direction; throws std::invalid_argument for a zero or non-finite vector.
-Eigen::Vector3d unit_print_direction(const Eigen::Vector3d& d);
-
 // Classifies every face. Throws std::invalid_argument (readable message) for a surface with no
 // faces, bad indices, non-finite coordinates, or bad options.
-OverhangReport analyse_overhang(const Surface& s, const OverhangOptions& options = {});
-// The same for a surface already checked (the optimizer measures every iterate this way).
-OverhangReport analyse_overhang(const CheckedSurface& s, const OverhangOptions& options = {});
+// The automatic plate rule reads the surface's own bounding box.
+OverhangReport analyse_overhang(const Surface& s, const PrintSetup& print = {});
+// The same for a surface already checked and a rule already resolved (the optimizer measures
+// every iterate this way, with the input's rule).
+OverhangReport analyse_overhang(const CheckedSurface& s, const PrintRule& rule);
 
 }  // namespace slim

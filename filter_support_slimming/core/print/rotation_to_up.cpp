@@ -4,7 +4,7 @@
 
 #include <Eigen/Geometry>
 
-#include "core/print/overhang.h"
+#include "core/print/print_setup.h"
 
 namespace slim {
 

@@ -6,7 +6,7 @@
 //
 // In: d, the print direction (any non-zero finite vector; it is normalised). Out: the rotation
 // by the smallest angle, about d x Z; for d = -Z, the half-turn about X. Throws
-// std::invalid_argument for a zero or non-finite d (unit_print_direction, overhang.h).
+// std::invalid_argument for a zero or non-finite d (unit_print_direction, print_setup.h).
 #pragma once
 
 #include <Eigen/Core>

@@ -46,8 +46,8 @@ Eigen::Vector3d tie_direction(const Eigen::Vector3d& d, const Eigen::Vector3d& t
 // point feasible for one is feasible for the other within it, since |n·p - n'·p| <= |n - n'|).
 // Thousands of them (the pieces of a flat face, a rigid feature on a CAD part, the faces of a
 // subdivided triangle, whose normals differ in the last bits) would push the search onto its
-// O(n²) path for nothing (a whole selected T took 9 s). The first of each stays where it was, so
-// the order, and with it every tie, is the same as without the repeats.
+// O(n²) path for nothing. The first of each stays where it was, so the order, and with it every
+// tie, is the same as without the repeats.
 Eigen::Matrix3Xd nonzero_unit_columns(const Eigen::Matrix3Xd& normals) {
   Eigen::Matrix3Xd unit(3, normals.cols());
   Eigen::Index count = 0;

@@ -41,8 +41,7 @@
 //    all, O(n) a round) for up to 3 rounds; then only the circle pairs that are edges of the convex
 //    hull of the normals, O(n log n); where that hull is numerically degenerate (normals a few ulps
 //    apart, four nearly co-circular normals: a scan's tight cluster), the active set to the end.
-// Measured (bench/min_rotation_bench.cpp): about 2 µs at n = 16; at n = 256 50 µs for a patch
-// within 40°, 30 µs within 1°, 0.2 ms all round the lower hemisphere.
+// Timings: bench/min_rotation_bench.cpp, docs/speed.md.
 // Memory O(n).
 #pragma once
 

@@ -28,10 +28,10 @@ constexpr size_t kActiveSetStep = 8;
 constexpr int kActiveSetFirstRounds = 3;
 // The constraints an active set takes in come from different directions: among normals closer
 // than this (a chord; 0.006°) it takes the most violated only, and the rest only if its next answer
-// violates them. A dense surface (a million faces, a scan, a subdivided part) puts a hundred
-// normals in a tet, in groups 1e-7 to 1e-5 apart (vertices stored as floats); taking a whole group
-// at once spent the rounds on one direction (on the 1.1M-face bunny 3,808 of 38,626 patches were
-// still undecided after 3 rounds; 71 now).
+// violates them. A dense surface (a million faces, a scan, a subdivided part) puts many normals
+// in a tet, in groups of near-copies far closer than this (vertices stored as floats); taking a
+// whole group at once spent the rounds on one direction, and many patches were still undecided
+// when the rounds ran out (docs/history/speed.md).
 constexpr double kActiveSetApart = 1e-4;
 
 // Why only hull edges can cross at a feasible point: at a feasible crossing p of circles i and j,

@@ -30,7 +30,7 @@
 //  * and where that hull is too nearly degenerate to trust (normals a few ulps apart, four nearly
 //    co-circular ones: a scan's tet, a tight cluster of a hundred or more), the active set again,
 //    without a limit on rounds. (Before: all O(m²) pairs.)
-// Measured (bench/min_rotation_bench.cpp): see min_rotation.h.
+// Timings (bench/min_rotation_bench.cpp): see min_rotation.h.
 #pragma once
 
 #include <Eigen/Core>

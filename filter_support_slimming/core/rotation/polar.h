@@ -16,10 +16,10 @@
 //      - Non-finite Q: a matrix of NaN. It never throws, because the local step calls it inside
 //        OpenMP loops, where an escaping exception terminates the host program (MeshLab).
 //
-// Why two methods: Eigen's JacobiSVD costs about 0.7 us per 3x3 matrix, a large share of an
-// iteration on a 280k-tet domain. For the usual input (det Q > 0, well conditioned, often already
-// close to a rotation) Higham's scaled Newton iteration X <- (z X + X^-T / z) / 2, with 3x3
-// inverses by cross products, reaches machine precision in 3-8 steps and is several times faster.
+// Why two methods: Eigen's JacobiSVD of every tet's 3x3 matrix is a large share of an iteration on
+// a large domain. For the usual input (det Q > 0, well conditioned, often already close to a
+// rotation) Higham's scaled Newton iteration X <- (z X + X^-T / z) / 2, with 3x3 inverses by cross
+// products, reaches machine precision in 3-8 steps and is several times faster.
 // Inputs with det Q <= 0 or a condition number above 1e6, and the rare iteration that has not
 // converged after 20 steps, go to the SVD. The result is deterministic: it depends on Q only.
 #pragma once

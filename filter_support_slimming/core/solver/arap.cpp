@@ -20,8 +20,9 @@ using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 // The energy is summed over fixed blocks of tets, then the blocks in order: the same bits for
 // any thread count.
 constexpr int kEnergyBlock = 4096;
-// Fewer free vertices than this are gathered on one thread: the work (~15 ns a vertex) is then
-// smaller than waking a thread team, and on a busy machine a team can wait a whole time slice.
+// Fewer free vertices than this are gathered on one thread: the work (a few loads and adds a
+// vertex) is then smaller than waking a thread team, and on a busy machine a team can wait a whole
+// time slice.
 constexpr int kParallelRows = 4096;
 
 }  // namespace
@@ -39,7 +40,7 @@ struct ArapSolver::Impl {
   std::vector<int> inc_begin, inc;
   std::vector<char> inc_held;
   // assemble_rhs's per-tet gradient terms (#T of 3 by 4, 96 bytes a tet), kept between calls:
-  // allocated afresh, its pages cost more than the assembly itself (55k-vertex domain).
+  // allocated afresh, its pages cost more than the assembly itself.
   mutable std::mutex workspace_mutex;
   mutable std::vector<Eigen::Matrix<double, 3, 4>> gradient;
 

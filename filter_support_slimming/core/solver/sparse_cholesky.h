@@ -7,8 +7,8 @@
 // Inputs: the lower triangle of an n by n SPD matrix (Eigen column-major, int indices); options.
 // Backends:
 //   Cholmod            CHOLMOD's supernodal LL^T, ordered by METIS alone (on our 3D domains it
-//                      always beats AMD: 55k unknowns, 14.1M nonzeros in L against 26.6M; CHOLMOD's
-//                      default analysis would try AMD first). The back-substitution runs on its
+//                      always beats AMD, with far fewer nonzeros in L, docs/history/speed-earlier.md;
+//                      CHOLMOD's default analysis would try AMD first). The back-substitution runs on its
 //                      factor with SupernodalSolver (supernodal_solve.h), faster for three right-hand
 //                      sides than CHOLMOD's own solve (own_supernodal_solve = false keeps that one,
 //                      for comparison).
@@ -18,8 +18,8 @@
 //                      backend in a build without it throws std::invalid_argument.
 // BLAS runs on options.blas_threads threads inside CHOLMOD's calls (blas_threads.h), and CHOLMOD's
 // OpenMP regions run serialized during the factorization: Debian's CHOLMOD opens them with a fixed
-// team of 4 for its copies, and on two cores that oversubscription spent a third of the setup in
-// thread wake-ups (55k unknowns: 1.45-1.63 s against 1.00 s serialized).
+// team of 4 for its copies, and on two cores that oversubscription spends more in thread wake-ups
+// than the extra threads save (docs/history/speed-earlier.md).
 // Errors: the constructor throws std::runtime_error when the factorization fails (the matrix is not
 // positive definite); solve returns false when the backend fails or the result is not finite.
 #pragma once

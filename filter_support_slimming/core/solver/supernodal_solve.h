@@ -4,9 +4,9 @@
 //
 // Why not the factoring library's own solve: CHOLMOD solves supernode by supernode through BLAS
 // calls sized for many right-hand sides; with three, the calls' overhead and narrow kernels
-// dominate (bunny domain, 55k unknowns: 37-45 ms). Here each supernode's dense block is streamed
+// dominate (docs/history/speed-earlier.md). Here each supernode's dense block is streamed
 // once per sweep, eight columns at a time against the three right-hand sides held in one 4-wide
-// register (23 ms on one core; up to eight right-hand sides in 8 lanes cost little more, the
+// register (up to eight right-hand sides in 8 lanes cost little more, the
 // sweep being bound by reading the factor), and the two sweeps run on two threads where the elimination tree
 // splits into independent subtrees.
 //

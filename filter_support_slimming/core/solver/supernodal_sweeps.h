@@ -34,8 +34,8 @@ typedef double Lanes __attribute__((vector_size(32)));
 [[gnu::always_inline]] inline void store(double* p, Lanes v) { __builtin_memcpy(p, &v, sizeof v); }
 
 // A row of N lanes is N / 4 registers, each loop over them unrolled: the row as one struct or as a
-// 64-byte vector went through the stack piece by piece (the six-column solve took three times as
-// long as the three-column one).
+// 64-byte vector went through the stack piece by piece, and a solve of more columns slowed out of
+// proportion to them.
 template <int N>
 struct Row {
   static constexpr int kParts = N / 4;

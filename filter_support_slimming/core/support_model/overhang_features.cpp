@@ -12,8 +12,8 @@
 #include "core/geometry/convex_polygon.h"
 #include "core/geometry/face_adjacency.h"
 #include "core/platform/parallel_for.h"
+#include "core/support_model/face_overhang.h"
 #include "core/support_model/region_extent.h"
-#include "core/utilities/union_find.h"
 
 namespace slim {
 namespace {
@@ -40,10 +40,6 @@ struct LayerVoxels {
   double slice_above(double z) const { return planes.slice_z(planes.layer_of(z)); }
   Vec3 to_grid(const Vec3& p) const { return Vec3((p.x() - x0) / pixel, (p.y() - y0) / pixel, layer(p.z())); }
 };
-
-// How far a slice must reach past the slice below to overhang there (mm): one layer's run at the
-// threshold slope.
-double slicer_margin(const OverhangRule& rule) { return rule.layer_height / std::tan(rule.max_slope_deg * M_PI / 180.0); }
 
 // Marks every pixel the feature (a triangle, or a segment a-b given as the triangle a, b, b)
 // overlaps, with the layers it meets there: the voxel rasterizer of the domain, exact (closed
@@ -94,94 +90,6 @@ double crease_reach(const Vec3& a, const Vec3& b, const Vec3& n1, const Vec3& n2
   return std::max(0.0, reach);
 }
 
-// Faces less steep than the threshold, kept only where the slicer sees them. From one layer to
-// the next a region of such faces reaches beyond the layer below by its own width w and then by
-// what the faces around it add over the rest of the layer: the part's surface descends from the
-// region over those faces (their mean horizontal run per height, cot s, length-weighted over the
-// region's outline; walls add nothing), so the reach is w + (layer - w tan(slope)) cot s. The
-// width of a region is 2 × area / outline of its projection (the width of a strip, the radius of a
-// disc), which understates how far an irregular patch reaches; a region is dropped only when its
-// reach stays under half of layer / tan(max slope): a lip or fold 0.1 mm wide on a wall (the
-// slicer lays nothing under it), not a patch of a scan's surface just below the threshold among
-// faces just above it (the slicer supports those: on the slimmed 70k-face bunny, dropping them
-// cost 14% of the support). 1: overhang, 2: dense overhang (the reach past layer / tan(dense
-// slope)), 0: neither; plus 4 on the region's edge (a side with no overhanging face).
-std::vector<char> overhanging_faces(const Surface& s, const FaceAdjacency& adj, const OverhangRule& rule) {
-  const int nf = static_cast<int>(s.F.rows());
-  const double cos_max = std::cos(rule.max_slope_deg * M_PI / 180.0), cos_dense = std::cos(rule.dense_slope_deg * M_PI / 180.0);
-  auto normal_of = [&](int f) -> Vec3 { return face_cross(s.V, s.F, f); };
-  std::vector<char> kind(static_cast<size_t>(nf), 0);
-  parallel_for(nf, [&](int f) {
-    const Vec3 n = normal_of(f);
-    const double len = n.norm();
-    const double down = len > 0 ? -n.z() / len : 0.0;  // cos of the slope, for a face looking down
-    kind[f] = down > cos_max ? (down > cos_dense ? 2 : 1) : 0;
-  });
-  // The overhanging faces in increasing order, each with a slot: their normals, neighbours and
-  // regions are kept per slot (a few of the faces; the rest need none of it).
-  std::vector<int> over, slot(static_cast<size_t>(nf), -1);
-  for (int f = 0; f < nf; ++f)
-    if (kind[f]) slot[f] = static_cast<int>(over.size()), over.push_back(f);
-  const int no = static_cast<int>(over.size());
-  std::vector<Vec3> normal(static_cast<size_t>(no));
-  std::vector<std::array<int, 3>> across(static_cast<size_t>(no));
-  parallel_for(no, [&](int i) {
-    normal[i] = normal_of(over[i]);
-    for (int k = 0; k < 3; ++k) across[i][k] = adj.across(over[i], k).face;
-  });
-  UnionFind regions(no);
-  for (int i = 0; i < no; ++i)
-    for (int k = 0; k < 3; ++k) {
-      const int g = across[i][k];
-      if (g >= 0 && kind[g]) regions.join(i, slot[g]);
-    }
-  // Per region (at its root): projected area, outline, sum of area × tan(slope), and along the
-  // outline the length next to faces that look down or sideways, and that length × their cot.
-  struct Region {
-    double area = 0.0, outline = 0.0, area_tan = 0.0, side = 0.0, side_cot = 0.0;
-  };
-  std::vector<Region> region(static_cast<size_t>(no));
-  for (int i = 0; i < no; ++i) {
-    const int f = over[i];
-    Region& r = region[regions.find(i)];
-    const double flat = std::abs(normal[i].z()), steep = normal[i].head<2>().norm();
-    r.area += 0.5 * flat;
-    r.area_tan += 0.5 * steep;  // projected area × tan(slope) = half the normal's horizontal part
-    for (int k = 0; k < 3; ++k) {
-      const int g = across[i][k];
-      if (g >= 0 && kind[g]) continue;
-      const double length = (s.V.row(s.F(f, (k + 1) % 3)) - s.V.row(s.F(f, k))).head<2>().norm();
-      r.outline += length;
-      if (g < 0) continue;
-      const Vec3 ng = normal_of(g);
-      if (ng.z() > 0 || !(ng.head<2>().norm() > 0)) continue;
-      r.side += length;
-      r.side_cot += length * -ng.z() / ng.head<2>().norm();
-    }
-  }
-  const double reach = slicer_margin(rule);
-  const double reach_dense = rule.layer_height / std::tan(rule.dense_slope_deg * M_PI / 180.0);
-  for (int i = 0; i < no; ++i) {
-    const int f = over[i];
-    const Region& r = region[regions.find(i)];
-    double seen = INFINITY;
-    if (r.outline > 0 && r.area > 0) {
-      const double width = 2.0 * r.area / r.outline, tan_slope = r.area_tan / r.area;
-      const double cot_around = r.side > 0 ? r.side_cot / r.side : 0.0;
-      seen = width + std::max(0.0, rule.layer_height - width * tan_slope) * cot_around;
-    }
-    kind[f] = seen > 0.5 * reach ? (kind[f] == 2 && seen > reach_dense ? 2 : 1) : 0;
-  }
-  for (int i = 0; i < no; ++i) {  // on the edge of its region: a side with no overhanging face
-    const int f = over[i];
-    for (int k = 0; k < 3 && (kind[f] & 3); ++k) {
-      const int g = across[i][k];
-      if (g < 0 || !(kind[g] & 3)) kind[f] |= 4;
-    }
-  }
-  return kind;
-}
-
 // Triangle a, b, c clipped to the half-spaces n·p <= d (convex_polygon.h): at most 6 corners,
 // fewer than 3 when nothing is left.
 using Clipped = ConvexPolygon<6>;
@@ -227,6 +135,42 @@ bool surface_goes_below(const Surface& s, const FaceAdjacency& adj, int v) {
       if (s.V(q, 2) < s.V(v, 2)) return true;
   return false;
 }
+// The part, its faces' overhang and their regions' extents, the rule and the layer voxels: what
+// every kind of feature is marked from. Each mark_* call takes a range of faces (vertices, for the
+// tips) and appends its features to `out`, so the ranges can run on the threads.
+class FeatureMarker {
+ public:
+  FeatureMarker(const Surface& s, const FaceAdjacency& adj, const PixelGrid& g, const OverhangRule& rule)
+      : s_(s), adj_(adj), rule_(rule), voxels_(g, rule, s.V.col(2).maxCoeff()), faces_(face_overhangs(s, adj, rule)),
+        extents_(region_extents(s, adj, region_mask(faces_))), margin_(slicer_margin(rule)) {}
+  void mark_overhangs(Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) const;
+  void mark_creases(Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) const;
+  void mark_tips(Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) const;
+
+ private:
+  // An overhanging face as its strips across its edges need it: its run per height, the heights
+  // it shows between, and whether it wants a dense interface.
+  struct MarkedFace {
+    double run;
+    ShownHeights shown;
+    bool dense;
+  };
+  void mark_strip_across(int g, const Vec3& a, const Vec3& b, const MarkedFace& face, std::vector<PixelOverhang>& out) const;
+  static std::vector<char> region_mask(const std::vector<FaceOverhang>& faces) {
+    std::vector<char> in(faces.size());
+    for (size_t f = 0; f < faces.size(); ++f) in[f] = faces[f].overhangs();
+    return in;
+  }
+  Vec3 vertex(int v) const { return s_.V.row(v).transpose(); }
+
+  const Surface& s_;
+  const FaceAdjacency& adj_;
+  const OverhangRule& rule_;
+  const LayerVoxels voxels_;
+  const std::vector<FaceOverhang> faces_;
+  const std::vector<RegionExtent> extents_;
+  const double margin_;  // how far a slice must reach past the slice below (slicer_margin)
+};
 
 // Bottom creases and lowest vertices: the first slice of a keel or a tip is an island with nothing
 // below it, which slicers support whatever the slope of the faces around it. The faces around each
@@ -235,23 +179,19 @@ bool surface_goes_below(const Surface& s, const FaceAdjacency& adj, int v) {
 // region's own: it is marked only where it bottoms out with nothing below it, where the faces'
 // trimming in their lowest layer (region_extent.h, which reckons with a wall there) would drop the
 // island. Where the surface goes on down from its lower end the faces show it, and the crease's
-// tip, measured along it, would overstate how far the slice passes the wall's (OpenSCAD's
-// example017 came back changed for nothing, the model saying -3.4% where PrusaSlicer said +0.1%).
-void mark_creases(const Surface& s, const FaceAdjacency& adj, const std::vector<char>& kind, const std::vector<RegionExtent>& extents,
-                  const OverhangRule& rule, const LayerVoxels& voxels, Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) {
-  const double margin = slicer_margin(rule);
-  const double cos_max_slope = std::cos(rule.max_slope_deg * M_PI / 180.0);
+// tip, measured along it, would overstate how far the slice passes the wall's.
+void FeatureMarker::mark_creases(Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) const {
+  const double cos_max_slope = std::cos(rule_.max_slope_deg * M_PI / 180.0);
   const double cos2_max_slope = cos_max_slope * cos_max_slope;
-  const double reach_overhang = 1.0 / std::tan(rule.max_slope_deg * M_PI / 180.0);
-  const double reach_dense = 1.0 / std::tan(rule.dense_slope_deg * M_PI / 180.0);
-  auto vertex = [&](int v) -> Vec3 { return s.V.row(v).transpose(); };
+  const double reach_overhang = 1.0 / std::tan(rule_.max_slope_deg * M_PI / 180.0);
+  const double reach_dense = 1.0 / std::tan(rule_.dense_slope_deg * M_PI / 180.0);
   // Each edge once, from its lower face index: asked first when the twins are a lookup (half the
   // edges then need no position at all), else after the cheaper tests.
-  const bool twins_first = adj.has_every_twin();
+  const bool twins_first = adj_.has_every_twin();
   for (int f = static_cast<int>(first); f < end; ++f) {
     for (int k = 0; k < 3; ++k) {
-      if (twins_first && adj.across(f, k).face < f) continue;
-      const int u = s.F(f, k), v = s.F(f, (k + 1) % 3), w = s.F(f, (k + 2) % 3);
+      if (twins_first && adj_.across(f, k).face < f) continue;
+      const int u = s_.F(f, k), v = s_.F(f, (k + 1) % 3), w = s_.F(f, (k + 2) % 3);
       const Vec3 a = vertex(u), b = vertex(v), c = vertex(w), e = b - a;
       // The edge less steep than the threshold (cos of its slope = |e.xy| / |e| > cos(max slope)),
       // and this face rising away from it. Squares first: most edges are far steeper, and the
@@ -262,105 +202,99 @@ void mark_creases(const Surface& s, const FaceAdjacency& adj, const std::vector<
       if (!(len > 0) || !(e.head<2>().norm() / len > cos_max_slope) || !rises_from(a, b, c)) continue;
       // Once per edge, manifold, the other face rising too, and convex: the other face's third
       // vertex behind this face's plane.
-      const FaceAdjacency::Twin twin = adj.across(f, k);
+      const FaceAdjacency::Twin twin = adj_.across(f, k);
       if (twin.face < f) continue;
-      if ((kind[f] & 3) && (kind[twin.face] & 3) && surface_goes_below(s, adj, a.z() < b.z() ? u : v)) continue;
-      const int x = twin.opposite;
-      const Vec3 d = vertex(x), n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
+      if (faces_[f].overhangs() && faces_[twin.face].overhangs() && surface_goes_below(s_, adj_, a.z() < b.z() ? u : v)) continue;
+      const Vec3 d = vertex(twin.opposite), n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
       if (!rises_from(b, a, d) || !(n1.dot(d - a) < 0)) continue;
       const double reach = crease_reach(a, b, n1, n2);
       if (!(reach > reach_overhang)) continue;
       const ShownHeights shown = shown_heights(std::min(a.z(), b.z()), std::max(a.z(), b.z()), reach,
-                                               feature_extent(extents, std::array<int, 2>{u, v}), voxels.planes, margin);
-      mark_feature_between(voxels, a, b, b, shown, reach > reach_dense, out);
+                                               feature_extent(extents_, std::array<int, 2>{u, v}), voxels_.planes, margin_);
+      mark_feature_between(voxels_, a, b, b, shown, reach > reach_dense, out);
     }
   }
 }
 
-void mark_tips(const Surface& s, const FaceAdjacency& adj, const LayerVoxels& voxels, Eigen::Index first,
-               Eigen::Index end, std::vector<PixelOverhang>& out) {
+void FeatureMarker::mark_tips(Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) const {
   for (int v = static_cast<int>(first); v < end; ++v) {
-    if (adj.faces_end(v) - adj.faces_begin(v) < 3) continue;
+    if (adj_.faces_end(v) - adj_.faces_begin(v) < 3) continue;
     // Below every neighbour; most vertices have one no higher among their first face's.
-    const double z = s.V(v, 2);
+    const double z = s_.V(v, 2);
     bool lowest = true;
-    for (const int* f = adj.faces_begin(v); f != adj.faces_end(v) && lowest; ++f)
-      for (int u : adj.face(*f))
-        if (u != v && !(z < s.V(u, 2))) lowest = false;
+    for (const int* f = adj_.faces_begin(v); f != adj_.faces_end(v) && lowest; ++f)
+      for (int u : adj_.face(*f))
+        if (u != v && !(z < s_.V(u, 2))) lowest = false;
     if (!lowest) continue;
-    const Vec3 p = s.V.row(v);
-    mark_feature(voxels, p, p, p, true, out);
+    const Vec3 p = vertex(v);
+    mark_feature(voxels_, p, p, p, true, out);
   }
 }
 
 // Where an overhang region ends across edge a-b on a face g that looks down but is steeper (or a
 // dropped lip), the slicer's overhang in the layers of that edge reaches onto g: it grows what
 // passes its threshold back by one layer's reach, kept to the layer's own strip. Marks g's part
-// between the slices around the edge and within the reach of it (beyond the edge, away from f, the
-// overhanging face of run run_f per height). Where g lies below the edge that is all of it. Where g
-// lies above it (an underside curving up into a steeper side), the slice below lies on f, and in
-// layer k only the part of g farther than the reach from the slice at slice_z(k - 1) is contact
-// (PrusaSlicer takes what lies within its margin of the slice below out of its contacts: the
-// slices_margin of detect_overhangs): at a point of g that is (z_e - slice_z(k - 1)) run_f back to
-// the edge at its height z_e, plus its own distance beyond the edge.
-void mark_strip_across(const Surface& s, int g, const Vec3& a, const Vec3& b, double run_f, double reach, const ShownHeights& shown,
-                       bool dense, const LayerVoxels& voxels, std::vector<PixelOverhang>& out) {
-  const Vec3 p = s.V.row(s.F(g, 0)), q = s.V.row(s.F(g, 1)), r = s.V.row(s.F(g, 2)), centre = (p + q + r) / 3.0;
+// between the slices around the edge and within the reach of it (beyond the edge, away from the
+// overhanging face, whose run per height is face.run). Where g lies below the edge that is all of
+// it. Where g lies above it (an underside curving up into a steeper side), the slice below lies on
+// the overhanging face, and in layer k only the part of g farther than the reach from the slice at
+// slice_z(k - 1) is contact (PrusaSlicer takes what lies within its margin of the slice below out
+// of its contacts: the slices_margin of detect_overhangs): at a point of g that is
+// (z_e - slice_z(k - 1)) run back to the edge at its height z_e, plus its own distance beyond it.
+void FeatureMarker::mark_strip_across(int g, const Vec3& a, const Vec3& b, const MarkedFace& face,
+                                      std::vector<PixelOverhang>& out) const {
+  const Vec3 p = vertex(s_.F(g, 0)), q = vertex(s_.F(g, 1)), r = vertex(s_.F(g, 2)), centre = (p + q + r) / 3.0;
   const Vec2 e = (b - a).head<2>();
   if (!((q - p).cross(r - p).z() < 0) || !(e.norm() > 0)) return;  // g looks up or sideways; an edge end on
   Vec2 away = Vec2(e.y(), -e.x()).normalized();
   if (away.dot((centre - a).head<2>()) < 0) away = -away;  // towards g
   // Inside the slices by a hair: the voxel cells are closed, and a strip ending on a slice would
   // touch the layer beyond it too.
-  const double z_low = std::max(shown.low, voxels.slice_below(std::min(a.z(), b.z())) + 1e-6);
-  const double z_high = std::min(shown.high, voxels.slice_above(std::max(a.z(), b.z())) - 1e-6);
+  const double z_low = std::max(face.shown.low, voxels_.slice_below(std::min(a.z(), b.z())) + 1e-6);
+  const double z_high = std::min(face.shown.high, voxels_.slice_above(std::max(a.z(), b.z())) - 1e-6);
   const Clipped strip = clip_triangle(p, q, r, {{{Vec3(0, 0, -1), -z_low}, {Vec3(0, 0, 1), z_high},
-                                                  {Vec3(away.x(), away.y(), 0), away.dot(a.head<2>()) + reach}}});
+                                                  {Vec3(away.x(), away.y(), 0), away.dot(a.head<2>()) + margin_}}});
   const Vec2 along = e / e.norm();
   const double edge_rise = (b.z() - a.z()) / e.norm();  // the edge's height per mm along it
   const bool above = centre.z() > a.z() + edge_rise * along.dot((centre - a).head<2>());
-  if (!above || !std::isfinite(run_f)) return mark_polygon(voxels, strip, dense, out);
-  // Layer by layer: the part of the strip in layer k where (z_e - slice_z(k - 1)) run_f + the
+  if (!above || !std::isfinite(face.run)) return mark_polygon(voxels_, strip, face.dense, out);
+  // Layer by layer: the part of the strip in layer k where (z_e - slice_z(k - 1)) run + the
   // distance beyond the edge passes the reach, a half-plane w.xy <= d since z_e is linear along it.
-  const SlicePlanes& planes = voxels.planes;
-  const Vec2 w = -run_f * edge_rise * along - away;
+  const SlicePlanes& planes = voxels_.planes;
+  const Vec2 w = -face.run * edge_rise * along - away;
   for (double k = planes.layer_of(z_low); planes.slice_z(k - 1) < z_high; k += 1) {
-    const double below = planes.slice_z(k - 1), d = w.dot(a.head<2>()) + run_f * (a.z() - below) - reach;
+    const double below = planes.slice_z(k - 1), d = w.dot(a.head<2>()) + face.run * (a.z() - below) - margin_;
     for (int i = 1; i + 1 < strip.n; ++i)
-      mark_polygon(voxels,
+      mark_polygon(voxels_,
                    clip_triangle(strip.p[0], strip.p[static_cast<size_t>(i)], strip.p[static_cast<size_t>(i + 1)],
                                  {{{Vec3(0, 0, -1), -(below + 1e-6)}, {Vec3(0, 0, 1), planes.slice_z(k) - 1e-6}, {Vec3(w.x(), w.y(), 0), d}}}),
-                   dense, out);
+                   face.dense, out);
   }
 }
 
-// The overhanging faces [first, end) (kind: overhanging_faces()) marked, and those on a region's
-// edge grown across their edges onto the steeper faces beside them (mark_strip_across). Not along
-// the outline (on the corpus the knight's change was 5.2 points off PrusaSlicer's with that growth,
-// 2.0 without): the slicer grows each overhang back by the margin, but then takes what lies within
-// the margin of the slice below out of its contacts (slices_margin in its detect_overhangs). Read
-// so, a strip onto a steeper face below the edge would go too; it stays because PrusaSlicer does
-// support the row of cells only that strip reaches under the hinge's bores
+// The overhanging faces [first, end) (face_overhang.h) marked, and those on a region's edge grown
+// across their edges onto the steeper faces beside them (mark_strip_across). Not along the
+// outline: the slicer grows each overhang back by the margin, but then takes what lies within the
+// margin of the slice below out of its contacts (slices_margin in its detect_overhangs). Read so, a
+// strip onto a steeper face below the edge would go too; it stays because PrusaSlicer does support
+// the row of cells only that strip reaches under a bore's ceiling
 // (Corpus.TheSupportModelPredictsPrusaSlicersChangeOnTheHinge). A strip onto a face above the edge
-// is held to that margin (the quadruped's change was 5.8 points off without it, 0.7 with it).
-void mark_overhangs(const Surface& s, const FaceAdjacency& adj, const std::vector<char>& kind, const std::vector<RegionExtent>& extents,
-                    const OverhangRule& rule, const LayerVoxels& voxels, Eigen::Index first, Eigen::Index end,
-                    std::vector<PixelOverhang>& out) {
-  const double reach = slicer_margin(rule);
+// is held to that margin.
+void FeatureMarker::mark_overhangs(Eigen::Index first, Eigen::Index end, std::vector<PixelOverhang>& out) const {
   for (int f = static_cast<int>(first); f < end; ++f) {
-    if (!kind[f]) continue;
-    const Vec3 a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-    const bool dense = (kind[f] & 3) == 2;
+    const FaceOverhang& overhang = faces_[f];
+    if (!overhang.overhangs()) continue;
+    const Vec3 a = vertex(s_.F(f, 0)), b = vertex(s_.F(f, 1)), c = vertex(s_.F(f, 2));
     const Vec3 n = (b - a).cross(c - a);
     const double run = n.head<2>().norm() > 0 ? -n.z() / n.head<2>().norm() : INFINITY;  // per height
     const ShownHeights shown = shown_heights(std::min({a.z(), b.z(), c.z()}), std::max({a.z(), b.z(), c.z()}), run,
-                                             feature_extent(extents, s.F.row(f)), voxels.planes, reach);
-    mark_feature_between(voxels, a, b, c, shown, dense, out);
-    if (!(kind[f] & 4) || !(n.head<2>().norm() > 0)) continue;
+                                             feature_extent(extents_, s_.F.row(f)), voxels_.planes, margin_);
+    mark_feature_between(voxels_, a, b, c, shown, overhang.dense(), out);
+    if (!overhang.region_edge || !(n.head<2>().norm() > 0)) continue;
+    const MarkedFace face{run, shown, overhang.dense()};
     for (int k = 0; k < 3; ++k) {
-      const int g = adj.across(f, k).face;
-      if (g >= 0 && !(kind[g] & 3))
-        mark_strip_across(s, g, s.V.row(s.F(f, k)), s.V.row(s.F(f, (k + 1) % 3)), run, reach, shown, dense, voxels, out);
+      const int g = adj_.across(f, k).face;
+      if (g >= 0 && !faces_[g].overhangs()) mark_strip_across(g, vertex(s_.F(f, k)), vertex(s_.F(f, (k + 1) % 3)), face, out);
     }
   }
 }
@@ -368,18 +302,15 @@ void mark_overhangs(const Surface& s, const FaceAdjacency& adj, const std::vecto
 }  // namespace
 
 std::vector<PixelOverhang> overhang_features(const Surface& s, const FaceAdjacency& adj, const PixelGrid& g, const OverhangRule& rule) {
-  const LayerVoxels voxels(g, rule, s.V.col(2).maxCoeff());
-  const std::vector<char> kind = overhanging_faces(s, adj, rule);
-  const std::vector<RegionExtent> extents = region_extents(s, adj, kind);
+  const FeatureMarker marker(s, adj, g, rule);
   using Part = std::vector<PixelOverhang>;
-  Part out = gather_in_ranges<PixelOverhang>(
-      s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_overhangs(s, adj, kind, extents, rule, voxels, a, b, part); });
+  Part out = gather_in_ranges<PixelOverhang>(s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { marker.mark_overhangs(a, b, part); });
   for (const Part& more :
        {rule.creases ? gather_in_ranges<PixelOverhang>(
-                           s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_creases(s, adj, kind, extents, rule, voxels, a, b, part); })
+                           s.F.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { marker.mark_creases(a, b, part); })
                      : Part{},
         rule.tips ? gather_in_ranges<PixelOverhang>(
-                        s.V.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { mark_tips(s, adj, voxels, a, b, part); })
+                        s.V.rows(), [&](Eigen::Index a, Eigen::Index b, Part& part) { marker.mark_tips(a, b, part); })
                   : Part{}})
     out.insert(out.end(), more.begin(), more.end());
   return out;

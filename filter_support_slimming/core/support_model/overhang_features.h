@@ -15,11 +15,10 @@
 // exact), with the object layers the feature shows in there (layer k >= 1: its part between the
 // slices of layers k - 1 and k; the voxel rasterizer of triangle_cells.h over pixels × layers) and
 // whether it wants a dense interface. Unsorted. The features:
-//   - a face less steep than rule.max_slope_deg (dense when less steep than rule.dense_slope_deg),
-//     unless its connected region of such faces reaches less than half a layer's reach
-//     (layer_height / tan(slope)) beyond the layer below (a lip or a fold);
-//   - around a region's edge, what the slicer adds by growing each layer's overhang back by that
-//     reach into the layer's own strip (the slice minus the slice below): the strip of a steeper
+//   - a face the slicer sees overhang (face_overhang.h: less steep than rule.max_slope_deg, dense
+//     when less steep than rule.dense_slope_deg, in a region that reaches far enough);
+//   - around a region's edge, what the slicer adds by growing each layer's overhang back by one
+//     layer's reach (layer_height / tan(max slope)) into the layer's own strip (the slice minus the slice below): the strip of a steeper
 //     face below the edge (between the slices around it, within the reach), where the slice
 //     below's outline lies;
 //   - a bottom crease: an edge whose two faces both rise away from it, convex, less steep than

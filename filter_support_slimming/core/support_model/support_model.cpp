@@ -23,8 +23,8 @@ void require(bool ok, const std::string& what) {
 }
 
 void check_options(const SupportModelOptions& o) {
-  require(o.print_direction.allFinite() && o.print_direction.norm() > 0, "the print direction must be a non-zero vector");
-  require(o.alpha_max_deg > 0 && o.alpha_max_deg < 90, "alpha_max must lie strictly between 0 and 90 degrees");
+  require(o.print.direction.allFinite() && o.print.direction.norm() > 0, "the print direction must be a non-zero vector");
+  require(o.print.alpha_max_deg > 0 && o.print.alpha_max_deg < 90, "alpha_max must lie strictly between 0 and 90 degrees");
   require(o.threshold_slack_deg >= 0 && o.threshold_slack_deg < 10, "the threshold slack must lie in [0, 10) degrees");
   require(o.layer_height > 0 && o.first_layer_height > 0 && o.max_support_layer_height >= o.layer_height,
           "layer heights must be positive, the support's at least the object's");
@@ -91,7 +91,7 @@ bool negative_volume(const Points& V, const Triangles& F) {
 }
 
 // The part in the print frame, kept from estimate to estimate: a fresh copy of the positions and
-// the faces costs a page fault every 4 kB (at 1.1M faces a fifth of an estimate).
+// the faces costs a page fault every 4 kB, a large share of an estimate on a large part.
 struct PrintFrame {
   Surface part;         // its faces: the estimate's, or those turned over (turned)
   bool turned = false;
@@ -110,7 +110,7 @@ struct PrintFrame {
 // when the enclosed volume is negative (an inside-out part).
 void print_frame(const Points& V, const Triangles& F, const SupportModelOptions& o, double turn, PrintFrame& frame) {
   const Eigen::Matrix3d r = Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-                            rotation_to_up(o.print_direction.normalized());
+                            rotation_to_up(unit_print_direction(o.print.direction));
   frame.part.V.resize(V.rows(), 3);
   frame.part.V.noalias() = V * r.transpose();
   const double plate = frame.part.V.col(2).minCoeff();
@@ -162,7 +162,7 @@ SupportEstimate estimate_with(const Points& V, const Triangles& F, const FaceAdj
   const auto offsets = phase_offsets(o.pixels_per_cell, o.grid_phases);
   const GridSweepSettings settings = sweep_settings(o);
   OverhangRule rule;
-  rule.max_slope_deg = 90.0 - o.alpha_max_deg + o.threshold_slack_deg;
+  rule.max_slope_deg = 90.0 - o.print.alpha_max_deg + o.threshold_slack_deg;
   rule.dense_slope_deg = std::atan(o.layer_height / o.dense_interface_overhang) * 180.0 / M_PI;
   rule.layer_height = o.layer_height;
   rule.first_layer_height = o.first_layer_height;

@@ -8,7 +8,7 @@
 //            vertex and an edge). Any pose: the print direction of the options says which way is
 //            up, and the part is dropped onto the plate first, as slicers do.
 //   options  SupportModelOptions below: print direction, alpha_max, the slicer's settings. The
-//            defaults are PrusaSlicer 2.5's, with the settings of tools/evaluate.sh (0.2 mm layers,
+//            defaults are PrusaSlicer 2.5's, with the settings of eval/studies/part.sh (0.2 mm layers,
 //            a 0.4 mm nozzle, automatic supports at threshold 90 - alpha_max).
 // Output (SupportEstimate)
 //   volume_mm3  the support filament the slicer extrudes (mm³ of plastic: what its G-code's
@@ -64,10 +64,9 @@
 // Determinism: the phases run in parallel (OpenMP), each in a fixed order, and are summed in
 // phase order: the result does not depend on the thread count.
 //
-// Cost (bench/support_model_bench.cpp; docs/speed.md): 5.7 ms for the 3,674-face bunny at 60 mm
-// on one thread (4 phases, 294 layers × 672 cells), 0.19 s for 940,544 faces (0.15 s on two);
-// 1 MB and 54 MB of memory. Linear in the faces (the raster; for an open mesh also the slices and
-// pixels × layers) plus cells × layers × phases (the sweep).
+// Cost (bench/support_model_bench.cpp; the figures in docs/speed.md): linear in the faces (the
+// raster; for an open mesh also the slices and pixels × layers) plus cells × layers × phases (the
+// sweep).
 //
 // Errors: std::invalid_argument with a readable reason for a surface with no faces, bad indices,
 // non-finite coordinates, zero height, options out of range, or a part too large to sweep (over
@@ -80,16 +79,17 @@
 #include <Eigen/Core>
 
 #include "core/geometry/surface.h"
+#include "core/print/print_setup.h"
 
 namespace slim {
 
 struct SupportModelOptions {
-  // The print.
-  Eigen::Vector3d print_direction = Eigen::Vector3d::UnitZ();  // any non-zero vector; normalised
-  double alpha_max_deg = 45.0;        // self-supporting angle from the vertical, (0, 90): the
-                                      // slicer's threshold is 90 - alpha_max from the horizontal
+  // The print: its direction and alpha_max, here in (0, 90) (the slicer's threshold is
+  // 90 - alpha_max from the horizontal). The plate rule is not read: the slicer finds the plate
+  // in the slices, as the model does.
+  PrintSetup print;
   double threshold_slack_deg = 1.0;   // PrusaSlicer adds 1° to its threshold (inclusive rule)
-  // The slicer (PrusaSlicer 2.5 defaults; layer and nozzle as tools/evaluate.sh slices).
+  // The slicer (PrusaSlicer 2.5 defaults; layer and nozzle as eval/studies/part.sh slices).
   double layer_height = 0.2;          // mm
   double first_layer_height = 0.2;    // mm
   double nozzle_diameter = 0.4;       // mm

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/optimizer/resolution_ladder.h"
-#include "core/optimizer/slimmer.h"
+#include "core/optimizer/support_slimmer.h"
 #include "core/optimizer/slimming.h"
 #include "support/shapes.h"
 
@@ -35,7 +35,7 @@ SlimmingOptions laddered_options() {
 SlimmingOptions at_one_resolution(int resolution) {
   SlimmingOptions o;
   o.resolution = resolution;
-  o.coherence.resolution_ladder.clear();
+  o.ladder.multiples.clear();
   return o;
 }
 
@@ -58,15 +58,15 @@ TEST(ResolutionLadder, TheRungsAreTheResolutionThenItsMultiples) {
   EXPECT_EQ(ladder_resolutions(o, 1000), (std::vector<int>{24, 32, 48}));
   o.resolution = 10;
   EXPECT_EQ(ladder_resolutions(o, 1000), (std::vector<int>{10, 13, 20}));  // 13.33 rounds to 13
-  o.coherence.resolution_ladder = {1.04, 2.0, 2.01};  // 10.4 -> 10 and 20.1 -> 20 repeat a rung
+  o.ladder.multiples = {1.04, 2.0, 2.01};  // 10.4 -> 10 and 20.1 -> 20 repeat a rung
   EXPECT_EQ(ladder_resolutions(o, 1000), (std::vector<int>{10, 20}));
   // Off: one rung, the resolution given.
   const SlimmingOptions defaults;
   auto only_the_resolution = [](const SlimmingOptions& off, long faces) {
     EXPECT_EQ(ladder_resolutions(off, faces), std::vector<int>{off.resolution});
   };
-  only_the_resolution(defaults, defaults.coherence.resolution_ladder_max_faces + 1);  // too large
-  EXPECT_EQ(ladder_resolutions(defaults, defaults.coherence.resolution_ladder_max_faces).size(), 3u);
+  only_the_resolution(defaults, defaults.ladder.max_faces + 1);  // too large
+  EXPECT_EQ(ladder_resolutions(defaults, defaults.ladder.max_faces).size(), 3u);
   o = defaults;
   o.method = SlimmingMethod::Paper;  // the paper as written: one resolution
   only_the_resolution(o, 1000);
@@ -74,20 +74,20 @@ TEST(ResolutionLadder, TheRungsAreTheResolutionThenItsMultiples) {
   o.domain = DomainKind::TetGen;  // no voxels
   only_the_resolution(o, 1000);
   o = defaults;
-  o.coherence.choose_by_support_model = false;  // nothing to choose by
+  o.result.judge = ResultJudge::ShadowVolume;  // nothing to choose by
   only_the_resolution(o, 1000);
   o = defaults;
-  o.max_iterations = 0;  // embed and write back only
+  o.steps.max_iterations = 0;  // embed and write back only
   only_the_resolution(o, 1000);
   o = defaults;
-  o.coherence.resolution_ladder.clear();
+  o.ladder.multiples.clear();
   only_the_resolution(o, 1000);
 }
 
 TEST(ResolutionLadder, BadMultiplesAreRefusedWithAReason) {
   for (double bad : {1.0, 0.5, 4.5, -2.0}) {
     SlimmingOptions o;
-    o.coherence.resolution_ladder = {bad};
+    o.ladder.multiples = {bad};
     try {
       slim_supports(bowl(), o);
       ADD_FAILURE() << "a multiple of " << bad << " was accepted";
@@ -109,9 +109,9 @@ TEST(ResolutionLadder, TheResultIsTheRungWhoseResultNeedsTheLeastSupport) {
   for (size_t i = 0; i < rungs.size(); ++i) {
     EXPECT_EQ(r.resolution_runs[i].resolution, rungs[i]);
     EXPECT_TRUE(r.resolution_runs[i].refused.empty());
-    EXPECT_EQ(r.resolution_runs[i].support_after_mm3, alone(rungs[i]).support_after_mm3);
+    EXPECT_EQ(r.resolution_runs[i].support_after_mm3.value(), alone(rungs[i]).support_after_mm3.value());
     EXPECT_EQ(r.resolution_runs[i].iterations, alone(rungs[i]).iterations);
-    if (alone(rungs[i]).support_after_mm3 < alone(rungs[least]).support_after_mm3) least = i;
+    if (alone(rungs[i]).support_after_mm3.value() < alone(rungs[least]).support_after_mm3.value()) least = i;
   }
   // Neither the first rung nor the last wins here, so the test tells a choice from a rule of
   // thumb (take the given, or the finest).
@@ -119,13 +119,13 @@ TEST(ResolutionLadder, TheResultIsTheRungWhoseResultNeedsTheLeastSupport) {
   const SlimmingResult& best = alone(rungs[least]);
   EXPECT_EQ(r.resolution, rungs[least]);
   EXPECT_EQ(r.surface.V, best.surface.V);
-  EXPECT_EQ(r.support_after_mm3, best.support_after_mm3);
-  EXPECT_EQ(r.support_slicer_phase_after_mm3, best.support_slicer_phase_after_mm3);
+  EXPECT_EQ(r.support_after_mm3.value(), best.support_after_mm3.value());
+  EXPECT_EQ(r.support_slicer_phase_after_mm3.value(), best.support_slicer_phase_after_mm3.value());
   EXPECT_EQ(r.iterations, best.iterations);
   EXPECT_EQ(r.domain_tets, best.domain_tets);
   EXPECT_EQ(r.shape.crease_share_pct, best.shape.crease_share_pct);
-  EXPECT_LT(r.support_after_mm3, alone(rungs[0]).support_after_mm3);
-  EXPECT_LT(r.support_after_mm3, r.support_before_mm3);
+  EXPECT_LT(r.support_after_mm3.value(), alone(rungs[0]).support_after_mm3.value());
+  EXPECT_LT(r.support_after_mm3.value(), r.support_before_mm3.value());
   // The time is every rung's.
   double seconds = 0.0;
   for (int resolution : rungs) seconds += alone(resolution).seconds;
@@ -139,7 +139,7 @@ TEST(ResolutionLadder, ARungOverTheMemoryBudgetIsLeftOutAndSaidSo) {
   const double needs_finest = optimizer_bytes(alone(24).domain_tets, alone(24).domain_vertices);
   ASSERT_LT(needs_middle, needs_finest);
   SlimmingOptions o = laddered_options();
-  o.max_memory_bytes = 0.5 * (needs_middle + needs_finest);
+  o.guards.max_memory_bytes = 0.5 * (needs_middle + needs_finest);
   const SlimmingResult r = slim_supports(bowl(), o);
   ASSERT_EQ(r.resolution_runs.size(), 3u);
   EXPECT_TRUE(r.resolution_runs[0].refused.empty());
@@ -148,7 +148,7 @@ TEST(ResolutionLadder, ARungOverTheMemoryBudgetIsLeftOutAndSaidSo) {
   EXPECT_EQ(r.resolution, 16);
   EXPECT_EQ(r.surface.V, alone(16).surface.V);
   EXPECT_NE(ladder_line(r).find(", 24 (not run: too large for the memory budget)"), std::string::npos) << ladder_line(r);
-  o.max_memory_bytes = 0.5 * needs_middle;  // under what the first rung needs
+  o.guards.max_memory_bytes = 0.5 * needs_middle;  // under what the first rung needs
   o.resolution = 16;
   EXPECT_THROW(slim_supports(bowl(), o), std::invalid_argument);
 }

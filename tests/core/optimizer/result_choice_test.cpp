@@ -10,9 +10,10 @@
 namespace slim {
 namespace {
 
+// An iterate as the support model measured it; a NaN support: the model could not measure it.
 IterationStats by_model(double support, double risky = 10.0, double creases = 0.0) {
   IterationStats s;
-  s.support_estimate = support;
+  if (!std::isnan(support)) s.support_estimate = support;
   s.shadow_volume = 1e6;  // never read when the model measures
   s.risky_area = risky;
   s.crease_share_pct = creases;
@@ -20,7 +21,7 @@ IterationStats by_model(double support, double risky = 10.0, double creases = 0.
 }
 
 TEST(IterateChoice, ASavingUnderTheLeastIsNotWorthAChangeOfShape) {
-  IterateChoice choice(by_model(100.0), 0.0, 3.0);
+  IterateChoice choice(by_model(100.0), ResultJudge::SupportModel, std::nullopt, 3.0);
   EXPECT_FALSE(choice.offer(by_model(98.0)));  // 2% saved
   EXPECT_FALSE(choice.offer(by_model(97.5)));  // 2.5%
   EXPECT_NEAR(choice.best_unsaved_pct(), 2.5, 1e-12);
@@ -37,7 +38,7 @@ TEST(IterateChoice, TheLeastSavingMustHoldAtTheSlicersOwnPhaseToo) {
     s.support_slicer_phase = slicer_phase;
     return s;
   };
-  IterateChoice choice(at(100.0, 120.0), 0.0, 3.0);
+  IterateChoice choice(at(100.0, 120.0), ResultJudge::SupportModel, std::nullopt, 3.0);
   EXPECT_FALSE(choice.offer(at(95.0, 119.0)));  // 5% over the phases, 0.8% at the slicer's
   EXPECT_NEAR(choice.best_unsaved_pct(), 100.0 / 120.0, 1e-12);
   EXPECT_FALSE(choice.offer(at(98.0, 100.0)));  // 2% and 17%: the mean falls short
@@ -46,12 +47,12 @@ TEST(IterateChoice, TheLeastSavingMustHoldAtTheSlicersOwnPhaseToo) {
   EXPECT_FALSE(choice.offer(at(90.0, 117.0)));  // more saved over the phases, too little at the slicer's
   EXPECT_TRUE(choice.offer(at(94.0, 110.0)));
   // Without the least, any saving over the phases counts, whatever the slicer's phase says.
-  IterateChoice any(at(100.0, 120.0), 0.0, 0.0);
+  IterateChoice any(at(100.0, 120.0), ResultJudge::SupportModel, std::nullopt, 0.0);
   EXPECT_TRUE(any.offer(at(99.0, 125.0)));
 }
 
 TEST(IterateChoice, WithoutTheLeastAnySavingCounts) {
-  IterateChoice choice(by_model(100.0), 0.0, 0.0);
+  IterateChoice choice(by_model(100.0), ResultJudge::SupportModel, std::nullopt, 0.0);
   EXPECT_TRUE(choice.offer(by_model(99.9)));
   EXPECT_FALSE(choice.offer(by_model(100.5)));
 }
@@ -62,14 +63,14 @@ TEST(IterateChoice, TheLeastSavingIsTheModelsNotTheShadowVolumes) {
   IterationStats input;
   input.shadow_volume = 100.0;
   input.risky_area = 10.0;
-  IterateChoice choice(input, 0.0, 3.0);
+  IterateChoice choice(input, ResultJudge::ShadowVolume, std::nullopt, 3.0);
   IterationStats s = input;
   s.shadow_volume = 99.0;
   EXPECT_TRUE(choice.offer(s));
 }
 
 TEST(IterateChoice, NeitherMoreRiskyAreaNorCreasesNorAnUnmeasuredIterateQualify) {
-  IterateChoice choice(by_model(100.0, 10.0), 2.5, 3.0);
+  IterateChoice choice(by_model(100.0, 10.0), ResultJudge::SupportModel, 2.5, 3.0);
   EXPECT_FALSE(choice.offer(by_model(50.0, 10.5)));         // more risky area than the input
   EXPECT_FALSE(choice.offer(by_model(std::nan(""), 5.0)));  // the model could not measure it
   EXPECT_TRUE(choice.reads_creases(by_model(60.0)));

@@ -66,11 +66,11 @@ TEST(RigidFeatures, AFeatureAtTheBudgetHoldsThereWhileTheRestGoesOn) {
   const std::vector<Eigen::Index> fv = vertices_of(s, feature);
   ASSERT_GT(fv.size(), 50u);
   SlimmingOptions o;
-  o.max_deviation_pct = 5.0;
+  o.budget = DeviationBudget::from_percent(5.0);
   o.rigid_features = feature;
   // One voxel resolution: the property holds run by run, and the ladder returns one rung's run
   // bit for bit (resolution_ladder_test.cpp), so its other rungs would only repeat it.
-  o.coherence.resolution_ladder.clear();
+  o.ladder.multiples.clear();
   const SlimmingResult r = slim_supports(s, o);
   // The feature reached the budget early, and the run went on past it.
   int first_held = 0;
@@ -90,7 +90,7 @@ TEST(RigidFeatures, AFeatureAtTheBudgetHoldsThereWhileTheRestGoesOn) {
   // The rest kept improving after the feature stopped: less risky area outside the feature than
   // where the run stood when the feature first held.
   SlimmingOptions until_held = o;
-  until_held.max_iterations = first_held;
+  until_held.steps.max_iterations = first_held;
   const SlimmingResult early = slim_supports(s, until_held);
   EXPECT_LT(risky_area_outside(r.surface, feature), risky_area_outside(early.surface, feature));
   EXPECT_LT(r.after.risky_area, r.before.risky_area);

@@ -1,4 +1,4 @@
-// Issue 7 through the core: every bad input of the catalogue (support/bad_inputs.h) ends in a
+// The bad-input catalogue through the core: every bad input (support/bad_inputs.h) ends in a
 // sane result or a refusal that says what was wrong and what to change; plus the guards that the
 // catalogue cannot express (scale invariance, the optimizer's memory guard, cancel, exceptions in
 // parallel regions).
@@ -76,9 +76,9 @@ TEST_P(BadInputCore, SupportSlimmingIsSaneOrRefusesWithAReason) {
 
 TEST_P(BadInputCore, OverhangAnalysisIsSaneOrRefusesWithAReason) {
   const BadInput& c = GetParam();
-  OverhangOptions o;
-  o.print_direction = c.options.print_direction;
-  o.alpha_max_deg = c.options.alpha_max_deg;
+  PrintSetup o;
+  o.direction = c.options.print.direction;
+  o.alpha_max_deg = c.options.print.alpha_max_deg;
   const Surface& s = c.surface;
   try {
     const OverhangReport r = analyse_overhang(inside_out(s, edge_topology(s)) ? flipped(s) : s, o);
@@ -104,8 +104,8 @@ TEST(Robustness, ResultDoesNotDependOnScaleOrPosition) {
   // scale with it, and the default choice of iterate by it is left out here (the shadow volume
   // chooses); ResultDoesNotDependOnPosition has it in.
   SlimmingOptions o;
-  o.max_iterations = 10;
-  o.coherence.choose_by_support_model = false;
+  o.steps.max_iterations = 10;
+  o.result.judge = ResultJudge::ShadowVolume;
   const SlimmingResult base = slim_supports(test::arch(), o);
   ASSERT_LT(base.after.risky_share(), base.before.risky_share());
   for (const auto& [name, scale, shift] : {std::make_tuple("tiny", 2e-5, 0.0), std::make_tuple("huge", 2e4, 0.0),
@@ -124,10 +124,10 @@ TEST(Robustness, ResultDoesNotDependOnPosition) {
   // bounding box and its figure averaged over grid phases, so moving the part changes nothing.
   const Surface arch = test::refined(test::arch(), 3);
   const SlimmingResult base = slim_supports(arch, {});
-  ASSERT_LT(base.support_after_mm3, base.support_before_mm3);
+  ASSERT_LT(base.support_after_mm3.value(), base.support_before_mm3.value());
   const SlimmingResult far = slim_supports(test::transformed(arch, Eigen::Matrix3d::Identity(), {1e3, -2e3, 0.0}), {});
   EXPECT_EQ(far.iterations, base.iterations);
-  EXPECT_NEAR(far.support_after_mm3, base.support_after_mm3, 1e-6 * base.support_before_mm3);
+  EXPECT_NEAR(far.support_after_mm3.value(), base.support_after_mm3.value(), 1e-6 * base.support_before_mm3.value());
   EXPECT_NEAR(far.after.risky_share(), base.after.risky_share(), 1e-6);
 }
 
@@ -140,7 +140,7 @@ TEST(Robustness, SignedVolumeKeepsItsDigitsFarFromTheOrigin) {
 TEST(Robustness, InsideOutMeshIsComputedTurnedOver) {
   // Turned over, the same part: the same positions, and the input's faces kept.
   SlimmingOptions o;
-  o.max_iterations = 5;
+  o.steps.max_iterations = 5;
   const Surface t = test::t_shape();
   const SlimmingResult right = slim_supports(t, o), inverted = slim_supports(flipped(t), o);
   EXPECT_FALSE(right.inside_out);
@@ -155,9 +155,9 @@ TEST(Robustness, InsideOutMeshIsComputedTurnedOver) {
 
 TEST(Robustness, NonUnitPrintDirectionGivesTheSameResult) {
   SlimmingOptions unit, long_one;
-  unit.max_iterations = long_one.max_iterations = 5;
-  unit.print_direction = Eigen::Vector3d(0.2, 0.1, 1.0).normalized();
-  long_one.print_direction = 7.0 * unit.print_direction;
+  unit.steps.max_iterations = long_one.steps.max_iterations = 5;
+  unit.print.direction = Eigen::Vector3d(0.2, 0.1, 1.0).normalized();
+  long_one.print.direction = 7.0 * unit.print.direction;
   const Surface t = test::t_shape();
   EXPECT_EQ(slim_supports(t, unit).surface.V, slim_supports(t, long_one).surface.V);
 }
@@ -183,8 +183,8 @@ TEST(Robustness, OptimizerMemoryGuardRefusesBeforeAllocating) {
   // resolution that does fit, which then runs.
   SlimmingOptions o;
   o.resolution = 48;
-  o.max_iterations = 1;
-  o.max_memory_bytes = 20e6;
+  o.steps.max_iterations = 1;
+  o.guards.max_memory_bytes = 20e6;
   int fitting = 0;
   try {
     slim_supports(test::t_shape(), o);
@@ -207,7 +207,7 @@ TEST(Robustness, CancelAtAnyProgressReportStopsAtOnce) {
   // no further report. The stages between reports are short: domain, embedding, factorization,
   // one iteration each.
   SlimmingOptions o;
-  o.max_iterations = 6;
+  o.steps.max_iterations = 6;
   int calls = 0;
   o.progress = [&](double, const std::string&) { return ++calls > 0; };
   const SlimmingResult full = slim_supports(test::t_shape(), o);

@@ -17,15 +17,15 @@ using namespace slim;
 // and creases more. Both still save support.
 TEST(Slimming, ArchOpeningIsSlimmedWithinTheCreaseLimit) {
   SlimmingOptions o;
-  o.max_deviation_pct = 10.0;
+  o.budget = DeviationBudget::from_percent(10.0);
   const Surface arch = test::refined(test::arch(), 3);
   const SlimmingResult limited = slim_supports(arch, o);
-  o.coherence.max_crease_share_pct = 0.0;
+  o.result.max_crease_share_pct.reset();
   const SlimmingResult free = slim_supports(arch, o);
-  const double limit = CoherenceOptions{}.max_crease_share_pct;
+  const double limit = *ResultChoiceOptions{}.max_crease_share_pct;
   const ShapeChange limited_shape = shape_change(arch, limited.surface), free_shape = shape_change(arch, free.surface);
   EXPECT_LE(limited_shape.crease_share_pct, limit);
-  EXPECT_NEAR(limited.history.back().crease_share_pct, limited_shape.crease_share_pct, 1e-9);
+  EXPECT_NEAR(limited.history.back().crease_share_pct.value(), limited_shape.crease_share_pct, 1e-9);
   // What the run says the shape paid (the figures read it) is what a fresh measure finds, with the
   // crease limit (its meter measured the iterates first) and without (built for the result alone).
   for (const auto& [run, fresh] : {std::pair{&limited, &limited_shape}, std::pair{&free, &free_shape}}) {
@@ -37,8 +37,8 @@ TEST(Slimming, ArchOpeningIsSlimmedWithinTheCreaseLimit) {
     EXPECT_EQ(run->shape.volume_result, fresh->volume_result);
   }
   EXPECT_GT(free_shape.crease_share_pct, limit) << "the arch no longer tests the limit";
-  EXPECT_LT(limited.support_after_mm3, 0.95 * limited.support_before_mm3);
-  EXPECT_LT(free.support_after_mm3, limited.support_after_mm3);
+  EXPECT_LT(limited.support_after_mm3.value(), 0.95 * limited.support_before_mm3.value());
+  EXPECT_LT(free.support_after_mm3.value(), limited.support_after_mm3.value());
   for (const IterationStats& st : limited.history) EXPECT_EQ(st.inverted_tets, 0) << st.iteration;
   // The stop reason says what the limit turned away; the free run has nothing to say.
   EXPECT_NE(limited.stop_reason.find("creased more than the limit (2.5% of the edge length)"), std::string::npos)
@@ -47,7 +47,7 @@ TEST(Slimming, ArchOpeningIsSlimmedWithinTheCreaseLimit) {
   // A limit that no iterate saving enough keeps returns the input, and says what the iterates
   // within it saved (the arch's flattest iterates, which crease nothing, save nothing by the
   // support model).
-  o.coherence.max_crease_share_pct = 0.01;
+  o.result.max_crease_share_pct = 0.01;
   const SlimmingResult none = slim_supports(arch, o);
   EXPECT_EQ(none.iterations, 0);
   EXPECT_EQ(none.surface.V, arch.V);
@@ -64,7 +64,7 @@ TEST(Slimming, ArchOpeningIsSlimmedWithinTheCreaseLimit) {
 TEST(Slimming, AnInsideOutPartsShapeChangeIsThePartsOwn) {
   const Surface t = test::refined(test::t_shape(), 3);
   SlimmingOptions o;
-  o.coherence.min_support_saving_pct = 0.0;  // slimmed, although it saves little (slimming_test.cpp)
+  o.result.min_support_saving_pct = 0.0;  // slimmed, although it saves little (slimming_test.cpp)
   const SlimmingResult r = slim_supports(flipped(t), o);
   ASSERT_TRUE(r.inside_out);
   ASSERT_GT(r.iterations, 0) << r.stop_reason;

@@ -22,7 +22,7 @@ double diag(const Surface& s) { return test::bbox_diagonal(s); }
 
 TEST(Slimming, BunnyLosesRiskyAreaWithoutInversionInsideTheBudget) {
   SlimmingOptions o;
-  o.max_deviation_pct = 5.0;
+  o.budget = DeviationBudget::from_percent(5.0);
   const SlimmingResult r = slim_supports(bunny(), o);
   EXPECT_LT(r.after.risky_area, 0.92 * r.before.risky_area);  // at least 8% less
   EXPECT_EQ(r.history.back().inverted_tets, 0);
@@ -32,14 +32,14 @@ TEST(Slimming, BunnyLosesRiskyAreaWithoutInversionInsideTheBudget) {
   EXPECT_GE(r.surface.V.col(2).minCoeff(), bunny().V.col(2).minCoeff() - 1e-9);
   EXPECT_NEAR(r.surface.V.col(2).minCoeff(), bunny().V.col(2).minCoeff(), 1e-9);
   // The reported figures are those of the returned surface.
-  const OverhangReport check = analyse_overhang(r.surface, {Eigen::Vector3d::UnitZ(), 45.0, 1e-3 * diag(bunny())});
+  const OverhangReport check = analyse_overhang(r.surface, {Eigen::Vector3d::UnitZ(), 45.0, PlateRule::within(1e-3 * diag(bunny()))});
   EXPECT_NEAR(check.risky_area, r.after.risky_area, 1e-9);
   EXPECT_NEAR(r.history.back().risky_area, r.after.risky_area, 1e-9);
 }
 
 TEST(Slimming, PaperMethodAlsoHelpsAndCoherentHelpsMore) {
   SlimmingOptions o;
-  o.max_deviation_pct = 5.0;
+  o.budget = DeviationBudget::from_percent(5.0);
   o.method = SlimmingMethod::Paper;
   const SlimmingResult paper = slim_supports(bunny(), o);
   o.method = SlimmingMethod::Coherent;
@@ -52,7 +52,7 @@ TEST(Slimming, PaperMethodAlsoHelpsAndCoherentHelpsMore) {
 // builds (support_model.h), than the paper's method saves, at every budget from 2% to 10%, with the
 // volume kept. On the T and the mushroom the paper's method saves nothing (its bent-up arms and rim
 // lift the overhangs that are left: more support); the coherent one must still save.
-// bench/slicer_frontier.sh measures the same with the real slicers on the corpus.
+// eval/studies/frontier.sh measures the same with the real slicers on the corpus.
 namespace {
 double modelled_support(const Surface& s) { return estimate_support(s).volume_mm3; }
 
@@ -63,9 +63,9 @@ void expect_more_support_saved_than_by_the_paper(const Surface& mesh) {
   for (double budget : {2.0, 3.0, 5.0, 10.0}) {
     SCOPED_TRACE("budget " + std::to_string(budget) + "%");
     SlimmingOptions o;
-    o.coherence.min_support_saving_pct = 0.0;
-    o.max_iterations = 200;
-    o.max_deviation_pct = budget;
+    o.result.min_support_saving_pct = 0.0;
+    o.steps.max_iterations = 200;
+    o.budget = DeviationBudget::from_percent(budget);
     o.method = SlimmingMethod::Paper;
     const SlimmingResult paper = slim_supports(mesh, o);
     o.method = SlimmingMethod::Coherent;
@@ -75,8 +75,8 @@ void expect_more_support_saved_than_by_the_paper(const Surface& mesh) {
     EXPECT_GT(coherent_saved, 0.02 * before);
     EXPECT_GT(coherent_saved, paper_saved);
     // The run's own figures are the model's, of the input and of the surface it returns.
-    EXPECT_DOUBLE_EQ(coherent.support_before_mm3, before);
-    EXPECT_NEAR(coherent.support_after_mm3, before - coherent_saved, 1e-9 * before);
+    EXPECT_DOUBLE_EQ(coherent.support_before_mm3.value(), before);
+    EXPECT_NEAR(coherent.support_after_mm3.value(), before - coherent_saved, 1e-9 * before);
     EXPECT_NEAR(coherent.shape.volume_result / coherent.shape.volume_input, 1.0, 0.02);  // the volume kept
     for (const IterationStats& st : coherent.history) EXPECT_EQ(st.inverted_tets, 0);
   }
@@ -96,61 +96,62 @@ TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheT) {
 // stop reason says why. With any saving allowed the same run returns the slimmed part.
 TEST(Slimming, ASavingWithinTheModelsErrorLeavesTheInputAsItWas) {
   const Surface mushroom = test::refined(test::mushroom(), 2);
-  const double least = CoherenceOptions{}.min_support_saving_pct;
+  const double least = ResultChoiceOptions{}.min_support_saving_pct;
   for (double budget : {2.0, 5.0, 10.0}) {
     SCOPED_TRACE("budget " + std::to_string(budget) + "%");
     SlimmingOptions o;
-    o.max_deviation_pct = budget;
+    o.budget = DeviationBudget::from_percent(budget);
     const SlimmingResult kept = slim_supports(mushroom, o);
     EXPECT_EQ(kept.iterations, 0);
     EXPECT_GT(kept.iterations_run, 0);
     EXPECT_EQ(kept.surface.V, mushroom.V);
-    EXPECT_EQ(kept.support_after_mm3, kept.support_before_mm3);
+    EXPECT_EQ(kept.support_after_mm3.value(), kept.support_before_mm3.value());
     EXPECT_NE(kept.stop_reason.find("% worth a change of shape, so the input is returned unchanged"), std::string::npos)
         << kept.stop_reason;
-    o.coherence.min_support_saving_pct = 0.0;
+    o.result.min_support_saving_pct = 0.0;
     const SlimmingResult any = slim_supports(mushroom, o);
     EXPECT_GT(any.iterations, 0);
-    EXPECT_LT(any.support_after_mm3, kept.support_before_mm3);
-    EXPECT_GT(any.support_slicer_phase_after_mm3, (1.0 - least / 100.0) * kept.support_slicer_phase_before_mm3);
-    EXPECT_NEAR(any.support_after_mm3, modelled_support(any.surface), 1e-9 * any.support_before_mm3);
+    EXPECT_LT(any.support_after_mm3.value(), kept.support_before_mm3.value());
+    EXPECT_GT(any.support_slicer_phase_after_mm3.value(), (1.0 - least / 100.0) * kept.support_slicer_phase_before_mm3.value());
+    EXPECT_NEAR(any.support_after_mm3.value(), modelled_support(any.surface), 1e-9 * any.support_before_mm3.value());
   }
 }
 TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheArch) {
   expect_more_support_saved_than_by_the_paper(test::refined(test::arch(), 3));
 }
 
-// The coherent method aims its local step CoherenceOptions::margin_deg past alpha_max, the
-// paper's 1 degree (PrusaSlicer's own threshold); SlimmingOptions::margin_deg, when set, is the
-// margin of either method, the same run to the bit. Aimed further, the faces bent up clear the
-// slicer's threshold: less risky area there (alpha_max - 1 degree from the vertical) and less
-// modelled support than the same run aimed at the threshold itself.
+// The coherent method aims its local step further past alpha_max than the paper's 1 degree
+// (PrusaSlicer's own threshold); StepOptions::margin_deg, when set, is the margin of either
+// method, and the method's own, set explicitly, is the same run to the bit. Aimed further, the
+// faces bent up clear the slicer's threshold: less risky area there (alpha_max - 1 degree from the
+// vertical) and less modelled support than the same run aimed at the threshold itself.
 TEST(Slimming, TheCoherentMethodAimsPastTheSlicersThreshold) {
   SlimmingOptions o;
-  EXPECT_GT(margin_of(o), 1.0);
+  const double coherent_margin = *method_applied(o).steps.margin_deg;
+  EXPECT_GT(coherent_margin, 1.0);
   o.method = SlimmingMethod::Paper;
-  EXPECT_EQ(margin_of(o), 1.0);
-  o.margin_deg = 2.5;
-  EXPECT_EQ(margin_of(o), 2.5);
+  EXPECT_EQ(*method_applied(o).steps.margin_deg, 1.0);
+  o.steps.margin_deg = 2.5;
+  EXPECT_EQ(*method_applied(o).steps.margin_deg, 2.5);
   o = SlimmingOptions{};
-  o.coherence.margin_deg = 0.0;
-  EXPECT_EQ(margin_of(o), 0.0);
+  o.steps.margin_deg = 0.0;
+  EXPECT_EQ(*method_applied(o).steps.margin_deg, 0.0);
 
   // One voxel resolution: the property holds run by run, and the ladder returns one rung's run
   // bit for bit (resolution_ladder_test.cpp), so its other rungs would only repeat it.
   SlimmingOptions one;
-  one.coherence.resolution_ladder.clear();
+  one.ladder.multiples.clear();
   const SlimmingResult aimed_past = slim_supports(bunny(), one);
   o = one;
-  o.margin_deg = 1.0;
+  o.steps.margin_deg = 1.0;
   const SlimmingResult at_threshold = slim_supports(bunny(), o);
-  o.margin_deg = -1.0;
-  o.coherence.margin_deg = 1.0;
-  EXPECT_EQ(slim_supports(bunny(), o).surface.V, at_threshold.surface.V);
-  const OverhangOptions slicer{Eigen::Vector3d::UnitZ(), 44.0, 1e-3 * diag(bunny())};
+  o.steps.margin_deg = coherent_margin;
+  EXPECT_EQ(slim_supports(bunny(), o).surface.V, aimed_past.surface.V);
+  const PrintSetup slicer{Eigen::Vector3d::UnitZ(), 44.0, PlateRule::within(1e-3 * diag(bunny()))};
   EXPECT_LT(analyse_overhang(aimed_past.surface, slicer).risky_area, analyse_overhang(at_threshold.surface, slicer).risky_area);
-  EXPECT_LT(aimed_past.support_after_mm3, at_threshold.support_after_mm3);
-  EXPECT_EQ(aimed_past.support_before_mm3, at_threshold.support_before_mm3);
+  ASSERT_TRUE(aimed_past.support_after_mm3.value() && at_threshold.support_after_mm3.value());
+  EXPECT_LT(aimed_past.support_after_mm3.value(), at_threshold.support_after_mm3.value());
+  EXPECT_EQ(aimed_past.support_before_mm3.value(), at_threshold.support_before_mm3.value());
 }
 
 TEST(Slimming, CoherentInversionGuardHoldsVerticesBackAndGoesOn) {
@@ -160,11 +161,12 @@ TEST(Slimming, CoherentInversionGuardHoldsVerticesBackAndGoesOn) {
   // tets there. The coherent guard puts those tets' vertices back and carries on, and later
   // iterates are better: the result comes after the first iteration held back.
   SlimmingOptions o;
-  o.max_deviation_pct = 10.0;
-  o.max_step_deg = 10.0;
+  o.budget = DeviationBudget::from_percent(10.0);
+  o.steps.max_step_deg = 10.0;
   o.coherence.risky_boost = 10.0;
-  o.coherence.keep_volume = o.coherence.choose_by_support_model = false;
-  o.coherence.max_crease_share_pct = 0.0;
+  o.keep_volume = false;
+  o.result.judge = ResultJudge::ShadowVolume;
+  o.result.max_crease_share_pct.reset();
   const Surface t = test::refined(test::t_shape(), 4);
   const SlimmingResult r = slim_supports(t, o);
   int first_held = 0;
@@ -195,7 +197,7 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
       SCOPED_TRACE(std::string(name) + (method == SlimmingMethod::Paper ? " paper" : " coherent"));
       SlimmingOptions o;
       o.method = method;
-      o.max_deviation_pct = 5.0;
+      o.budget = DeviationBudget::from_percent(5.0);
       const SlimmingResult r = slim_supports(mesh, o);
       EXPECT_GT(r.before.shadow_volume, 0.0);
       EXPECT_LE(r.after.risky_area, r.before.risky_area);
@@ -203,20 +205,20 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
         EXPECT_LE(r.after.shadow_volume, r.before.shadow_volume);
         for (const IterationStats& st : r.history) EXPECT_GE(st.shadow_volume, r.after.shadow_volume);
       } else {
-        ASSERT_GT(r.support_before_mm3, 0.0);
-        EXPECT_NEAR(r.support_after_mm3, modelled_support(r.surface), 1e-9 * r.support_before_mm3);
+        ASSERT_GT(r.support_before_mm3.value(), 0.0);
+        EXPECT_NEAR(r.support_after_mm3.value(), modelled_support(r.surface), 1e-9 * r.support_before_mm3.value());
         // A result saves at least the least worth a change of shape, over the grid phases and at
         // the slicer's own; the mushroom's rim and the T's arms save less at the slicer's phase
         // (PrusaSlicer: +0.2% and +1.0%), and they come back unchanged; the others are slimmed.
-        const double least = o.coherence.min_support_saving_pct / 100.0;
-        const double phase_bar = (1.0 - least) * r.support_slicer_phase_before_mm3;
+        const double least = o.result.min_support_saving_pct / 100.0;
+        const double phase_bar = (1.0 - least) * r.support_slicer_phase_before_mm3.value();
         for (const IterationStats& st : r.history)
-          if (st.risky_area <= r.before.risky_area && st.support_slicer_phase <= phase_bar) {
-            EXPECT_GE(st.support_estimate, r.support_after_mm3) << st.iteration;
+          if (st.risky_area <= r.before.risky_area && st.support_slicer_phase.value() <= phase_bar) {
+            EXPECT_GE(st.support_estimate.value(), r.support_after_mm3.value()) << st.iteration;
           }
         if (r.iterations > 0) {
-          EXPECT_LE(r.support_after_mm3, (1.0 - least) * r.support_before_mm3);
-          EXPECT_LE(r.support_slicer_phase_after_mm3, phase_bar);
+          EXPECT_LE(r.support_after_mm3.value(), (1.0 - least) * r.support_before_mm3.value());
+          EXPECT_LE(r.support_slicer_phase_after_mm3.value(), phase_bar);
         }
         EXPECT_EQ(r.iterations == 0, std::string(name) == "mushroom" || std::string(name) == "T") << r.stop_reason;
       }
@@ -233,9 +235,9 @@ TEST(Slimming, EveryGlobalStepMinimisesItsOwnEnergy) {
   for (SlimmingMethod method : {SlimmingMethod::Paper, SlimmingMethod::Coherent}) {
     SlimmingOptions o;
     o.method = method;
-    o.max_deviation_pct = 0.0;  // no budget: keep every step
-    o.max_iterations = 8;
-    o.stall_tolerance = -1e300;
+    o.budget = DeviationBudget::from_percent(0.0);  // no budget: keep every step
+    o.steps.max_iterations = 8;
+    o.steps.stall_tolerance = -1e300;
     const SlimmingResult r = slim_supports(bunny(), o);
     ASSERT_GT(r.history.size(), 1u);
     for (size_t i = 1; i < r.history.size(); ++i) {
@@ -259,7 +261,7 @@ TEST(Slimming, SafeMeshComesBackUnchanged) {
 
 TEST(Slimming, ZeroIterationsEmbedsAndWritesBack) {
   SlimmingOptions o;
-  o.max_iterations = 0;
+  o.steps.max_iterations = 0;
   const SlimmingResult r = slim_supports(bunny(), o);
   EXPECT_EQ(r.surface.V, bunny().V);  // checked to round-trip, then handed back exactly
   EXPECT_EQ(r.after.risky_area, r.before.risky_area);
@@ -270,10 +272,10 @@ TEST(Slimming, ZeroIterationsEmbedsAndWritesBack) {
 TEST(Slimming, DeviationBudgetHoldsAtEveryLevel) {
   for (double budget : {1.0, 2.0, 3.0}) {
     SlimmingOptions o;
-    o.max_deviation_pct = budget;
+    o.budget = DeviationBudget::from_percent(budget);
     // One voxel resolution: the property holds run by run, and the ladder returns one rung's run
     // bit for bit (resolution_ladder_test.cpp), so its other rungs would only repeat it.
-    o.coherence.resolution_ladder.clear();
+    o.ladder.multiples.clear();
     const SlimmingResult r = slim_supports(bunny(), o);
     EXPECT_LE(r.displacement.maxCoeff(), budget / 100.0 * diag(bunny()) * (1 + 1e-9)) << budget;
     EXPECT_LE(r.after.risky_area, r.before.risky_area);
@@ -285,11 +287,11 @@ TEST(Slimming, SameResultWithOneAndTwoThreads) {
   for (const auto& [mesh, budget, iterations] :
        {std::tuple{bunny(), 5.0, 6}, std::tuple{test::refined(test::t_shape(), 4), 10.0, 40}}) {
     SlimmingOptions o;
-    o.max_iterations = iterations;
-    o.max_deviation_pct = budget;
+    o.steps.max_iterations = iterations;
+    o.budget = DeviationBudget::from_percent(budget);
     // One voxel resolution: the property holds run by run, and the ladder returns one rung's run
     // bit for bit (resolution_ladder_test.cpp), so its other rungs would only repeat it.
-    o.coherence.resolution_ladder.clear();
+    o.ladder.multiples.clear();
     o.threads = 1;
     const SlimmingResult one = slim_supports(mesh, o);
     o.threads = 2;
@@ -324,11 +326,11 @@ TEST(Slimming, RigidFeatureKeepsItsShapeWhileTheRestBends) {
   }
   ASSERT_GT(feature_vertices.size(), 50u);
   SlimmingOptions o;
-  o.max_deviation_pct = 5.0;
+  o.budget = DeviationBudget::from_percent(5.0);
   o.rigid_features = feature;
   // One voxel resolution: the property holds run by run, and the ladder returns one rung's run
   // bit for bit (resolution_ladder_test.cpp), so its other rungs would only repeat it.
-  o.coherence.resolution_ladder.clear();
+  o.ladder.multiples.clear();
   const SlimmingResult r = slim_supports(s, o);
   ASSERT_GT(r.iterations, 0);
   double worst = 0.0;
@@ -357,7 +359,7 @@ TEST(Slimming, CancelStopsTheRun) {
 TEST(Slimming, BadInputIsRefusedWithAReason) {
   EXPECT_THROW(slim_supports(Surface{}, {}), std::invalid_argument);
   SlimmingOptions o;
-  o.alpha_max_deg = -5;
+  o.print.alpha_max_deg = -5;
   EXPECT_THROW(slim_supports(test::t_shape(), o), std::invalid_argument);
   o = {};
   o.rigid_features = {true, false};
@@ -367,17 +369,14 @@ TEST(Slimming, BadInputIsRefusedWithAReason) {
   EXPECT_THROW(slim_supports(test::t_shape(), o), std::invalid_argument);
   for (double margin : {45.0, std::nan("")}) {
     o = {};
-    o.margin_deg = margin;
-    EXPECT_THROW(slim_supports(test::t_shape(), o), std::invalid_argument) << margin;
-    o = {};
-    o.coherence.margin_deg = margin;
+    o.steps.margin_deg = margin;
     EXPECT_THROW(slim_supports(test::t_shape(), o), std::invalid_argument) << margin;
   }
   o = {};
-  o.coherence.margin_deg = -1.0;
+  o.steps.margin_deg = -1.0;
   EXPECT_THROW(slim_supports(test::t_shape(), o), std::invalid_argument);
   o = {};
-  o.coherence.min_support_saving_pct = 100.0;
+  o.result.min_support_saving_pct = 100.0;
   EXPECT_THROW(slim_supports(test::t_shape(), o), std::invalid_argument);
 }
 #endif  // SLIM_TESTS_HAVE_VCG

@@ -1,5 +1,5 @@
 // Print Orientation (core/orientation/orientation.h) on bad input: a readable refusal for every malformed
-// surface and option, and on issue 7's catalogue a sane pose or a refusal, never a crash.
+// surface and option, and on the bad-input catalogue a sane pose or a refusal, never a crash.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -46,7 +46,7 @@ TEST(Orientation, BadInputsAreRefusedWithAReason) {
   const std::vector<std::pair<Setting, std::string>> settings{
       {[](OrientationOptions& o) { o.sphere_candidates = 0; }, "sphere directions"},
       {[](OrientationOptions& o) { o.contact_bonus = -0.1; }, "contact bonus"},
-      {[](OrientationOptions& o) { o.plate_tolerance = std::numeric_limits<double>::infinity(); }, "plate tolerance"},
+      {[](OrientationOptions& o) { o.plate = PlateRule::within(std::numeric_limits<double>::infinity()); }, "plate tolerance"},
       {[](OrientationOptions& o) { o.report_count = 0; }, "reported"},
       {[](OrientationOptions& o) { o.refine_starts = -1; }, "refined"},
       {[](OrientationOptions& o) { o.flat_regions = -1; }, "flat regions"},
@@ -63,10 +63,10 @@ TEST(Orientation, BadInputsAreRefusedWithAReason) {
 }
 
 TEST(Orientation, BadInputCatalogueIsOrientedOrRefused) {
-  // Issue 7's catalogue: every mesh either gets a sane result or a readable refusal, never a crash.
+  // The bad-input catalogue: every mesh either gets a sane result or a readable refusal, never a crash.
   for (const test::BadInput& c : test::bad_inputs()) {
     OrientationOptions o;
-    if (c.options.alpha_max_deg >= 0.0 && c.options.alpha_max_deg < 90.0) o.alpha_max_deg = c.options.alpha_max_deg;
+    if (c.options.print.alpha_max_deg >= 0.0 && c.options.print.alpha_max_deg < 90.0) o.alpha_max_deg = c.options.print.alpha_max_deg;
     try {
       const OrientationResult r = optimize_orientation(c.surface, o);
       EXPECT_TRUE(r.best.direction.allFinite() && std::abs(r.best.direction.norm() - 1.0) < 1e-12) << c.name;

@@ -40,11 +40,11 @@ struct Reference {
   double shadow_volume, risky_area, contact_area, score;
 };
 Reference reference_score(const Surface& s, const Eigen::Vector3d& d, const OrientationOptions& o) {
-  OverhangOptions oo;
-  oo.print_direction = d;
+  PrintSetup oo;
+  oo.direction = d;
   oo.alpha_max_deg = o.alpha_max_deg;
   // The default tolerance is Support Slimming's: 1e-3 of the bbox diagonal of the part as given.
-  oo.plate_tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * test::bbox_diagonal(s);
+  oo.plate = PlateRule::within(o.plate.tolerance_mm(test::bbox_diagonal(s)).value());
   const OverhangReport r = analyse_overhang(s, oo);
   const Eigen::VectorXd area = face_areas(s);
   double contact = 0.0;
@@ -249,7 +249,7 @@ TEST(Orientation, ATieGoesToAFaceFlatOnThePlateNotToATiltWithinTheTolerance) {
   const Surface plate = test::box({0, 0, 0}, {2, 40, 60});
   const Surface turned = test::transformed(plate, test::axis_angle({0, 1, 0}, -80.0 * M_PI / 180.0));
   OrientationOptions o;
-  o.plate_tolerance = 0.5;
+  o.plate = PlateRule::within(0.5);
   o.sphere_candidates = 200000;
   o.support_model_candidates = 0;  // the score alone: the support model would see the tilt
   const OrientationResult r = optimize_orientation(turned, o);
@@ -334,18 +334,19 @@ TEST(Orientation, SupportModelPicksTheLeastSupportOfTheBest) {
     ASSERT_GT(judged, 0u);
     EXPECT_EQ(r.best.direction, r.top.front().direction);
     SupportModelOptions m;
-    m.print_direction = r.best.direction;
-    ASSERT_GE(r.best.support_estimate, 0.0);  // judged (-1: unmeasurable); the T lying down needs none
-    EXPECT_NEAR(r.best.support_estimate, estimate_support(shape.surface, m).volume_mm3, 1e-9 * r.best.support_estimate);
-    ASSERT_GE(r.as_given.support_estimate, 0.0);  // the pose as given was judged too
+    m.print.direction = r.best.direction;
+    ASSERT_TRUE(r.best.support_estimate.has_value());  // judged; the T lying down needs none
+    ASSERT_GE(r.best.support_estimate.value(), 0.0);
+    EXPECT_NEAR(r.best.support_estimate.value(), estimate_support(shape.surface, m).volume_mm3, 1e-9 * r.best.support_estimate.value());
+    ASSERT_TRUE(r.as_given.support_estimate.has_value());  // the pose as given was judged too
     std::vector<const OrientationCandidate*> rivals = {&r.as_given};
     for (size_t k = 1; k <= judged && k < r.top.size(); ++k) rivals.push_back(&r.top[k]);
-    double least = r.best.support_estimate;
+    double least = r.best.support_estimate.value();
     for (const OrientationCandidate* c : rivals)
-      if (c->support_estimate >= 0.0) least = std::min(least, c->support_estimate);
-    EXPECT_LE(r.best.support_estimate, least * 1.01 + 1.0);  // tied with the least
+      if (c->support_estimate) least = std::min(least, *c->support_estimate);
+    EXPECT_LE(r.best.support_estimate.value(), least * 1.01 + 1.0);  // tied with the least
     for (const OrientationCandidate* c : rivals) {
-      if (c->support_estimate >= 0.0 && c->support_estimate <= least * 1.01 + 1.0) {
+      if (c->support_estimate && *c->support_estimate <= least * 1.01 + 1.0) {
         EXPECT_GE(r.best.contact_area, c->contact_area * (1.0 - 1e-9)) << c->origin;  // a tie: the most contact
       }
     }
@@ -358,8 +359,8 @@ TEST(Orientation, ATieInSupportGoesToThePoseRestingMoreOnThePlate) {
   // alike on every face, stays as given: BoxStaysAsGivenAndATurnedBoxLandsOnItsLargestFace.)
   const Surface post = test::box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, 10, 40));
   const OrientationResult r = optimize_orientation(post, OrientationOptions{});
-  EXPECT_EQ(r.as_given.support_estimate, 0.0);
-  EXPECT_EQ(r.best.support_estimate, 0.0);
+  EXPECT_EQ(r.as_given.support_estimate.value(), 0.0);
+  EXPECT_EQ(r.best.support_estimate.value(), 0.0);
   EXPECT_NEAR(r.best.contact_area, 400.0, 1e-9);
   EXPECT_NEAR(r.as_given.contact_area, 100.0, 1e-9);
   EXPECT_LT(std::abs(r.best.direction.z()), 1e-9);

@@ -21,8 +21,8 @@ TEST(Overhang, CubeOnThePlateHasNoRiskyArea) {
 }
 
 TEST(Overhang, CubeBottomIsRiskyWithoutThePlateRule) {
-  OverhangOptions o;
-  o.plate_tolerance = -1.0;
+  PrintSetup o;
+  o.plate = PlateRule::none();
   const OverhangReport r = analyse_overhang(test::box({0, 0, 0}, {10, 10, 10}), o);
   EXPECT_EQ(r.risky_count, 2);
   EXPECT_NEAR(r.risky_area, 100.0, 1e-9);
@@ -31,7 +31,7 @@ TEST(Overhang, CubeBottomIsRiskyWithoutThePlateRule) {
 TEST(Overhang, TShapeArmUndersidesAreExactlyTheRiskyArea) {
   const test::TShape p;
   for (double alpha : {0.0, 30.0, 45.0, 60.0, 89.0}) {
-    OverhangOptions o;
+    PrintSetup o;
     o.alpha_max_deg = alpha;
     const OverhangReport r = analyse_overhang(test::t_shape(p), o);
     EXPECT_NEAR(r.risky_area, test::t_shape_arm_underside_area(p), 1e-9) << "alpha " << alpha;
@@ -45,7 +45,7 @@ TEST(Overhang, ShadowVolumeIsThePrismBetweenTheOverhangsAndThePlate) {
   const test::TShape p;
   const double under_arms = test::t_shape_arm_underside_area(p) * p.height;
   for (double alpha : {0.0, 45.0, 89.0}) {
-    OverhangOptions o;
+    PrintSetup o;
     o.alpha_max_deg = alpha;
     EXPECT_NEAR(analyse_overhang(test::t_shape(p), o).shadow_volume, under_arms, 1e-9 * under_arms) << "alpha " << alpha;
   }
@@ -59,8 +59,8 @@ TEST(Overhang, ShadowVolumeOfATiltedOverhangCountsItsFootprint) {
   // still risky at alpha 45 and its footprint is area * cos(30); its centroid rises with the turn.
   const double side = 10.0, turn = 30.0 * M_PI / 180.0;
   const Surface cube = test::transformed(test::box({-5, -5, -5}, {5, 5, 5}), test::axis_angle({1, 0, 0}, turn));
-  OverhangOptions o;
-  o.plate_tolerance = -1.0;
+  PrintSetup o;
+  o.plate = PlateRule::none();
   const OverhangReport r = analyse_overhang(cube, o);
   const Points n = face_normals(cube);
   const Eigen::VectorXd area = face_areas(cube);
@@ -83,9 +83,9 @@ TEST(Overhang, IcosphereRiskyAreaMatchesTheSphericalCap) {
   const double r = 10.0;
   const Surface sphere = test::icosphere(5, r);
   for (double alpha : {0.0, 15.0, 30.0, 45.0, 60.0}) {
-    OverhangOptions o;
+    PrintSetup o;
     o.alpha_max_deg = alpha;
-    o.plate_tolerance = -1.0;  // the whole lower cap counts
+    o.plate = PlateRule::none();  // the whole lower cap counts
     const OverhangReport rep = analyse_overhang(sphere, o);
     // Points of the sphere with n·z < -sin(alpha): a cap of height r (1 - sin(alpha)).
     const double expected = 2.0 * M_PI * r * r * (1.0 - std::sin(alpha * M_PI / 180.0));
@@ -98,9 +98,9 @@ TEST(Overhang, UpsideDownFaceIsRiskyExactlyWhenItsOriginalFacedUpSteeply) {
   const double tau = std::sin(alpha * M_PI / 180.0);
   const Surface sphere = test::icosphere(3, 10.0);
   const Surface flipped = test::transformed(sphere, test::axis_angle({1, 0.3, 0}, M_PI));
-  OverhangOptions o;
+  PrintSetup o;
   o.alpha_max_deg = alpha;
-  o.plate_tolerance = -1.0;
+  o.plate = PlateRule::none();
   const OverhangReport r = analyse_overhang(flipped, o);
   const Points n0 = face_normals(sphere);
   for (Eigen::Index f = 0; f < sphere.F.rows(); ++f) {
@@ -113,8 +113,8 @@ TEST(Overhang, UpsideDownFaceIsRiskyExactlyWhenItsOriginalFacedUpSteeply) {
 TEST(Overhang, PrintDirectionNeedNotBeUnitOrVertical) {
   // A box printed along +X: the face at x = lo is on the plate, the face at x = hi is safe, the
   // four side faces are vertical (n·d = 0) and safe.
-  OverhangOptions o;
-  o.print_direction = {3.0, 0.0, 0.0};
+  PrintSetup o;
+  o.direction = {3.0, 0.0, 0.0};
   const OverhangReport r = analyse_overhang(test::box({0, 0, 0}, {2, 2, 2}), o);
   EXPECT_EQ(r.risky_count, 0);
   EXPECT_EQ(r.plate_count, 2);
@@ -137,11 +137,11 @@ TEST(Overhang, QualityIsNdPlusTauAndPlateFacesReadSafe) {
 
 TEST(Overhang, BadInputIsRefusedWithAReason) {
   EXPECT_THROW(analyse_overhang(Surface{}), std::invalid_argument);
-  OverhangOptions o;
+  PrintSetup o;
   o.alpha_max_deg = 90.0;
   EXPECT_THROW(analyse_overhang(test::box({0, 0, 0}, {1, 1, 1}), o), std::invalid_argument);
   o = {};
-  o.print_direction = Eigen::Vector3d::Zero();
+  o.direction = Eigen::Vector3d::Zero();
   EXPECT_THROW(analyse_overhang(test::box({0, 0, 0}, {1, 1, 1}), o), std::invalid_argument);
   try {
     analyse_overhang(Surface{});
@@ -153,8 +153,8 @@ TEST(Overhang, BadInputIsRefusedWithAReason) {
 TEST(Overhang, ZeroPlateToleranceMeansExactContact) {
   // The cube's bottom lies exactly at the lowest height: with a tolerance of 0 it still rests on
   // the plate (the rule is "within", inclusive); a face a hair above does not.
-  OverhangOptions o;
-  o.plate_tolerance = 0.0;
+  PrintSetup o;
+  o.plate = PlateRule::within(0.0);
   const OverhangReport r = analyse_overhang(test::box({0, 0, 0}, {10, 10, 10}), o);
   EXPECT_EQ(r.plate_count, 2);
   EXPECT_EQ(r.risky_count, 0);
@@ -169,9 +169,9 @@ TEST(Overhang, ZeroPlateToleranceMeansExactContact) {
 TEST(Overhang, AFaceExactlyOnTheThresholdIsSafe) {
   // At alpha_max = 0 (tau = 0) a vertical wall has n·d = 0 exactly: on the threshold, safe. Only
   // the bottom overhangs when the plate rule is off: 100 mm², not the walls' 400.
-  OverhangOptions o;
+  PrintSetup o;
   o.alpha_max_deg = 0.0;
-  o.plate_tolerance = -1.0;
+  o.plate = PlateRule::none();
   const OverhangReport r = analyse_overhang(test::box({0, 0, 0}, {10, 10, 10}), o);
   EXPECT_EQ(r.risky_count, 2);
   EXPECT_NEAR(r.risky_area, 100.0, 1e-9);
@@ -188,8 +188,9 @@ TEST(Overhang, ALargeMeshGivesTheSumsOfOnePassFaceByFace) {
   Surface s = test::icosphere(6);
   s.V = s.V * test::axis_angle(Eigen::Vector3d(1, 2, 0).normalized(), 0.3).transpose();
   s.V.col(2).array() -= s.V.col(2).minCoeff();
-  OverhangOptions o;
-  o.plate_tolerance = 0.05;
+  const double tolerance = 0.05;
+  PrintSetup o;
+  o.plate = PlateRule::within(tolerance);
   const double tau = std::sin(o.alpha_max_deg * M_PI / 180.0);
   const Eigen::VectorXd height = s.V.col(2);
   const double plate = height.minCoeff();
@@ -202,7 +203,7 @@ TEST(Overhang, ALargeMeshGivesTheSumsOfOnePassFaceByFace) {
     area(f) = 0.5 * cross.norm();
     const Eigen::Vector3d n = cross / cross.norm();
     const double q = n.z() + tau, h0 = height(s.F(f, 0)), h1 = height(s.F(f, 1)), h2 = height(s.F(f, 2));
-    if (std::max({h0, h1, h2}) - plate <= o.plate_tolerance) {
+    if (std::max({h0, h1, h2}) - plate <= tolerance) {
       ++on_plate;
     } else if (q < 0.0) {
       ++risky;

@@ -91,7 +91,7 @@ TEST(SupportModel, TurningAboutThePrintAxisChangesLittle) {
   SupportModelOptions two;
   two.turns = 2;
   EXPECT_NEAR(volume(part, two), 0.5 * (v + volume(turned(90.0))), 1e-6 * v);
-  // The judge's protocol (bench/slicer_frontier.sh): the slicer's own phase (the grid centred on
+  // The judge's protocol (eval/studies/frontier.sh): the slicer's own phase (the grid centred on
   // the part's box, which a quarter turn keeps), averaged over the quarter turns.
   SupportModelOptions own, judged;
   own.grid_phases = judged.grid_phases = 1;
@@ -168,7 +168,7 @@ TEST(SupportModel, SameResultOnAnyThreadCountAndPrintDirection) {
   EXPECT_EQ(estimate_support(open, one).phase_mm3, estimate_support(open, two).phase_mm3);
   // The same part given upside down with the print direction -Z.
   SupportModelOptions down;
-  down.print_direction = -Vector3d::UnitZ();
+  down.print.direction = -Vector3d::UnitZ();
   const Surface flipped_t = test::transformed(t, test::axis_angle(Vector3d::UnitX(), M_PI));
   EXPECT_NEAR(volume(flipped_t, down), a.volume_mm3, 1e-6 * a.volume_mm3);
 }
@@ -186,7 +186,7 @@ TEST(SupportModel, OneModelOfAMeshGivesEstimateSupportsBitsInEveryPose) {
     for (const Vector3d& d : {Vector3d(0, 0, 1), Vector3d(0.3, -0.2, 1), Vector3d(1, 0, 0.2)})
       for (int threads : {1, 2}) {
         SupportModelOptions o;
-        o.print_direction = d;
+        o.print.direction = d;
         o.threads = threads;
         const Surface moved = test::transformed(*mesh, Eigen::Matrix3d::Identity(), Vector3d(threads, 0.5, 0));
         const SupportEstimate a = model.estimate(moved.V, o), b = estimate_support(moved, o);
@@ -221,10 +221,10 @@ TEST(SupportModel, RejectsBadInput) {
   o.grid_phases = 3;
   EXPECT_THROW(estimate_support(test::t_shape(), o), std::invalid_argument);
   o = {};
-  o.alpha_max_deg = 90.0;
+  o.print.alpha_max_deg = 90.0;
   EXPECT_THROW(estimate_support(test::t_shape(), o), std::invalid_argument);
   o = {};
-  o.print_direction = Vector3d::Zero();
+  o.print.direction = Vector3d::Zero();
   EXPECT_THROW(estimate_support(test::t_shape(), o), std::invalid_argument);
   o = {};
   o.slice_max_gap = -1.0;

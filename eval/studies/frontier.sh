@@ -2,33 +2,33 @@
 # The slicer frontier: for every corpus model and creature, at each deviation budget and for
 # each method, what the slicers say the slimming saved and what the shape paid.
 #
-#   bench/slicer_frontier.sh [--corpus DIR] [--out DIR] [--budgets 1,2,3,5,10]
-#                            [--methods coherent,paper] [--models a,b,...] [--turns 0,90,180,270]
-#                            [--build DIR] [--plot PNG] [--table-only]
+#   eval/run.sh frontier [--corpus DIR] [--out DIR] [--budgets 1,2,3,5,10]
+#                        [--methods coherent,paper] [--models a,b,...] [--turns 0,90,180,270]
+#                        [--build DIR] [--plot PNG] [--table-only]
 #
-# Per model (data/corpus/<name>.ply from scripts/corpus.sh: print pose, 60 mm), per method and
+# Per model (data/corpus/<name>.ply from eval/run.sh corpus: print pose, 60 mm), per method and
 # budget: support-slim --method M --max-deviation B (defaults otherwise, alpha_max 45), then
-#   prusa, cura   support change input -> result, % (tools/slice_support.sh: mean of 4 turns)
-#   hausdorff     symmetric Hausdorff distance, % of the bbox diagonal (tools/hausdorff.sh; where
-#                 MeshLab's filter fails, the CLI's own figure from --report)
+#   prusa, cura   support change input -> result, % (eval/studies/slice_support.sh: mean of 4 turns)
+#   hausdorff     symmetric Hausdorff distance, % of the bbox diagonal (eval/studies/hausdorff.sh;
+#                 where MeshLab's filter fails, the CLI's own figure from --report)
 #   volume        volume change, %;  crease  crease share, % (and its 99th percentile, degrees)
 #   model         the support model's predicted change, %: the CLI's own figures (support-slim
 #                 --report), or for a run that does not measure them (--method paper) the
-#                 model's estimates of both files (bench/support_model_tool); the column is left
+#                 model's estimates of both files (eval/support_model_tool); the column is left
 #                 out, never filled with a placeholder, when neither is there. Twice: the mean
 #                 over grid phases (what the run minimises) and at the slicer's own phase (the
 #                 part as placed: the prediction for these files). And a third time as the judge
 #                 measures the slicers: at the slicer's own phase, the mean of the turns 0° and
 #                 90° about the print axis (a quarter turn lays the support lines along the part's
-#                 other axis; 180° and 270° repeat them), by bench/support_model_tool on both files.
+#                 other axis; 180° and 270° repeat them), by eval/support_model_tool on both files.
 # Writes OUT/frontier.tsv (every figure, one row per run), OUT/frontier.md (the table) and, with
 # gnuplot, a plot of support cut against Hausdorff distance per model (--plot, default
 # OUT/frontier.png). Every run is cached in OUT/<model>/<method>_<budget>/: a second call only
-# does what is missing, so an interrupted bench resumes; --table-only runs nothing and tables
-# what is there (the runs not made yet are counted, not shown). It is a bench, not a test: it takes
+# does what is missing, so an interrupted study resumes; --table-only runs nothing and tables
+# what is there (the runs not made yet are counted, not shown). It is a study, not a test: it takes
 # about an hour for the whole corpus on 2 cores; the slicers run two at a time.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 corpus="$repo/data/corpus" out="$repo/out/frontier" budgets="1,2,3,5,10" methods="coherent,paper" models=""
 turns="0,90,180,270" build="$repo/build" plot="" table_only=""
 while [ $# -gt 0 ]; do
@@ -36,17 +36,17 @@ while [ $# -gt 0 ]; do
     --table-only) table_only=1; shift; continue ;;
     --corpus) corpus="$2" ;; --out) out="$2" ;; --budgets) budgets="$2" ;; --methods) methods="$2" ;;
     --models) models="$2" ;; --turns) turns="$2" ;; --build) build="$2" ;; --plot) plot="$2" ;;
-    -h|--help) sed -n 2,24p "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "slicer_frontier: unknown argument $1" >&2; exit 1 ;;
+    -h|--help) sed -n 2,29p "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "frontier: unknown argument $1" >&2; exit 1 ;;
   esac
   shift 2
 done
-die() { echo "slicer_frontier: $*" >&2; exit 1; }
+die() { echo "frontier: $*" >&2; exit 1; }
 kv() { awk -v k="$2" 'index($0, k "=") == 1 { print substr($0, length(k) + 2); exit }' "$1"; }
 pct() { awk -v b="$1" -v a="$2" 'BEGIN { if (b == "" || a == "" || b == 0) print "n/a"; else printf "%.1f", 100 * (a / b - 1) }'; }
-[ -f "$corpus/manifest.tsv" ] || die "no corpus in $corpus: run scripts/corpus.sh first"
+[ -f "$corpus/manifest.tsv" ] || die "no corpus in $corpus: run eval/run.sh corpus first"
 build="$(cd "$build" && pwd)"; mkdir -p "$out"; out="$(cd "$out" && pwd)"
-slim="$build/cli/support-slim" eval_tool="$build/tools/slim-eval" model_tool="$build/bench/support_model_tool"
+slim="$build/cli/support-slim" eval_tool="$build/eval/slim-eval" model_tool="$build/eval/support_model_tool"
 [ -x "$slim" ] && [ -x "$eval_tool" ] || die "build support-slim and slim-eval first"
 export OPENBLAS_NUM_THREADS=1
 # The support model's figure, when the CLI has one (issue: support-slim --report FILE.json).
@@ -56,7 +56,7 @@ slice_both() {  # PART.stl DIR: PrusaSlicer and Cura, mean of the turns, into DI
   local slicer
   for slicer in prusa cura; do
     [ -s "$2/$slicer.txt" ] && continue
-    "$repo/tools/slice_support.sh" "$1" --slicer "$slicer" --angle 45 --turns "$turns" --build "$build" \
+    "$repo/eval/studies/slice_support.sh" "$1" --slicer "$slicer" --angle 45 --turns "$turns" --build "$build" \
       --out "$2/slices" >"$2/$slicer.txt.tmp" || die "slicing $1 with $slicer failed"
     mv "$2/$slicer.txt.tmp" "$2/$slicer.txt"
     rm -f "$2/slices/${slicer}"_turn*.gcode  # large; the figures are kept
@@ -80,11 +80,11 @@ run_one() {  # NAME METHOD BUDGET
   slice_both "$dir/result.stl" "$dir"
   # MeshLab's Hausdorff filter, or where it fails (its uniform grid asserts on some inputs) the
   # core's exact point-to-triangle distance from the report (core/geometry/surface_distance.h).
-  if ! "$repo/tools/hausdorff.sh" "$in_dir/input.ply" "$dir/result.ply" --diag "$(kv "$in_dir/input.txt" diag)" --out "$dir" \
+  if ! "$repo/eval/studies/hausdorff.sh" "$in_dir/input.ply" "$dir/result.ply" --diag "$(kv "$in_dir/input.txt" diag)" --out "$dir" \
     --build "$build" >"$dir/hausdorff.txt" 2>"$dir/hausdorff.err"; then
     local core_h
     core_h="$(json_number "$dir/report.json" hausdorff_mm)"
-    [ -n "$core_h" ] || die "tools/hausdorff.sh failed on $name ($method, $budget%): $(tail -1 "$dir/hausdorff.err")"
+    [ -n "$core_h" ] || die "eval/studies/hausdorff.sh failed on $name ($method, $budget%): $(tail -1 "$dir/hausdorff.err")"
     printf 'hausdorff_mm=%s\nsource=support-slim --report (MeshLab failed: %s)\n' "$core_h" "$(tail -1 "$dir/hausdorff.err")" >"$dir/hausdorff.txt"
   fi
   local diag model="" before after
@@ -191,7 +191,7 @@ cat "$out/frontier.md"
 # ---- the plot: support cut against Hausdorff distance, per model, both methods ------------------
 [ -n "$plot" ] || plot="$out/frontier.png"
 if command -v gnuplot >/dev/null 2>&1; then
-  "$repo/bench/slicer_frontier_plot.sh" "$tsv" "$plot" && echo "[frontier] plot: $plot" >&2
+  "$repo/eval/studies/frontier-plot.sh" "$tsv" "$plot" && echo "[frontier] plot: $plot" >&2
 else
   echo "[frontier] gnuplot is not installed (apt-get install gnuplot-nox): no plot" >&2
 fi

@@ -4,7 +4,7 @@
 # scaled as the judge scales it (longest side 60 mm, slim-eval prepare). Idempotent: what is
 # there already is kept. Nothing here is committed: it all goes into data/corpus/ (ignored).
 #
-#   scripts/corpus.sh [--build DIR] [--size MM] [--out DIR]      (DIR default: data/corpus)
+#   eval/run.sh corpus [--build DIR] [--size MM] [--out DIR]     (DIR default: data/corpus)
 #
 #  1. Tools: openscad (the CAD parts are its examples, exported to STL) and assimp-utils (3DS,
 #     OBJ, PLY, Collada -> STL); installed with apt-get when missing.
@@ -16,10 +16,10 @@
 #     package and version, licence, the file in the package, the print direction used, and the
 #     faces turned to agree with their neighbours (only where a model needs it).
 #
-# Needs a build with tools/slim-eval and tests/eval/write_shape (--build, default build/).
+# Needs a build with eval/slim-eval and tests/eval/write_shape (--build, default build/).
 # Debian's libcgal-demo meshes are kept for an independent evaluation and are never used here.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 build="$repo/build" size=60 corpus="$repo/data/corpus"
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -31,7 +31,7 @@ while [ $# -gt 0 ]; do
   esac
 done
 die() { echo "corpus: $*" >&2; exit 1; }
-eval_tool="$build/tools/slim-eval"; write_shape="$build/tests/eval/write_shape"
+eval_tool="$build/eval/slim-eval"; write_shape="$build/tests/eval/write_shape"
 [ -x "$eval_tool" ] && [ -x "$write_shape" ] || die "build the targets slim-eval and write_shape first (scripts/build.sh)"
 mkdir -p "$corpus"/{debs,pkgs,raw}
 

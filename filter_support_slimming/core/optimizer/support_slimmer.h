@@ -2,7 +2,7 @@
 // local/global iteration per step() (libigl's *_precomputation / *_solve split; slimming.h's
 // slim_supports is the driver around it).
 //
-//   SupportSlimmer slimmer(input, std::move(domain), before, options, report);
+//   SupportSlimmer slimmer(input, std::move(domain), before, options, rule, report);
 //   IterationStats stats = slimmer.step();       // as often as the stopping rule allows
 //   slimmer.surface_positions(), slimmer.overhang(), slimmer.displacement()
 //
@@ -11,10 +11,11 @@
 //            #V by 3 mm, #F by 3. It must outlive the slimmer.
 //   domain   its EmbeddedDomain (embedded_domain.h), moved in.
 //   before   the input's overhangs at alpha_max with the run's plate tolerance (overhang.h).
-//   options  SlimmingOptions, already validated; method Paper turns CoherenceOptions off.
+//   options  SlimmingOptions, validated and with the method applied (method_applied()).
+//   rule     the input's SlimmingRule: its diagonal, print rule and deviation budget.
 //   report   progress, called once before the factorization (fraction 0.05); it may throw.
 // The constructor (the precomputation): the memory guard (refuses, before anything big is
-// allocated, a domain whose optimizer would need more than options.max_memory_bytes, naming a
+// allocated, a domain whose optimizer would need more than options.guards.max_memory_bytes, naming a
 // resolution that fits); the local step's rest inverses and constraint pieces (local_step.h);
 // the tie directions and edge turns (coherence.h); the rigid features (rigid_features.h); the
 // global step's weights and its one factorization (arap.h), with the domain's plate vertices
@@ -30,6 +31,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,10 +49,21 @@
 
 namespace slim {
 
+// What a run derives from its input and options, once for every rung: the input's bounding-box
+// diagonal (mm, > 0), the print rule resolved for it, and the deviation budget in mm (none: no
+// budget). Throws std::invalid_argument for a part with no extent or a bad print setup.
+struct SlimmingRule {
+  double diagonal_mm = 0.0;
+  PrintRule print;
+  std::optional<double> budget_mm;
+};
+SlimmingRule slimming_rule(const Surface& input, const SlimmingOptions& options);
+
 class SupportSlimmer {
  public:
   SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domain, const OverhangReport& before,
-                 const SlimmingOptions& options, const std::function<void(double, const std::string&)>& report);
+                 const SlimmingOptions& options, const SlimmingRule& rule,
+                 const std::function<void(double, const std::string&)>& report);
 
   IterationStats step();
 
@@ -73,10 +86,10 @@ class SupportSlimmer {
 
   const Surface& input_;
   SlimmingOptions options_;
-  CoherenceOptions coherence_;
   EmbeddedDomain domain_;
-  OverhangOptions measure_;
-  double budget_ = 0.0, plate_ = 0.0, piece_area_ = 0.0, volume_target_ = 0.0;
+  PrintRule measure_;
+  std::optional<double> budget_;
+  double plate_ = 0.0, piece_area_ = 0.0, volume_target_ = 0.0;
   LocalStep local_;
   LocalStepState state_;
   std::unique_ptr<RigidFeatures> features_;
@@ -92,10 +105,6 @@ class SupportSlimmer {
   std::string guard_stop_;
   SlimmingStageSeconds times_;
 };
-
-// The deviation budget in mm for a part whose bbox diagonal is `diag` (mm): max_deviation_mm when
-// it is > 0, else max_deviation_pct of diag; HUGE_VAL for none.
-double deviation_budget(const SlimmingOptions& options, double diag);
 
 // Peak memory of the optimizer for a domain of `tets` tets and `vertices` vertices, in bytes:
 // about 650 bytes per tet (rest inverses, L, M and the extra rotations, face pieces, ARAP's rest

@@ -2,32 +2,32 @@
 # Print Orientation judged by PrusaSlicer on the corpus: the support as given, in the pose the
 # search chooses, and in that pose slimmed.
 #
-#   bench/orientation_study.sh [--corpus DIR] [--out DIR] [--models a,b,...] [--build DIR]
-#                              [--budget PCT]
+#   eval/run.sh orientation [--corpus DIR] [--out DIR] [--models a,b,...] [--build DIR]
+#                           [--budget PCT]
 #
-# Per model (data/corpus/<name>.ply, scripts/corpus.sh; default the organic ones): support-slim
+# Per model (data/corpus/<name>.ply, eval/run.sh corpus; default the organic ones): support-slim
 # --orient --max-deviation PCT (default 5) --oriented-output, then PrusaSlicer on the part as
-# given, oriented, and oriented + slimmed (tools/slice_support.sh: the mean of 4 quarter turns),
+# given, oriented, and oriented + slimmed (eval/studies/slice_support.sh: the mean of 4 turns),
 # next to the support model's own figures for the turn (the search's choice is the model's). Prints
 # a table and writes OUT/orientation.tsv; each model is cached in OUT/<name>/ (delete it to redo).
-# A bench, not a test: about a minute a model on 2 cores.
+# A study, not a test: about a minute a model on 2 cores.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 corpus="$repo/data/corpus" out="$repo/out/orientation" build="$repo/build" models="" budget=5
 while [ $# -gt 0 ]; do
   case "$1" in
     --corpus) corpus="$2" ;; --out) out="$2" ;; --models) models="$2" ;; --build) build="$2" ;; --budget) budget="$2" ;;
     -h|--help) sed -n 2,13p "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "orientation_study: unknown argument $1" >&2; exit 1 ;;
+    *) echo "orientation: unknown argument $1" >&2; exit 1 ;;
   esac
   shift 2
 done
-die() { echo "orientation_study: $*" >&2; exit 1; }
+die() { echo "orientation: $*" >&2; exit 1; }
 kv() { awk -v k="$2" 'index($0, k "=") == 1 { print substr($0, length(k) + 2); exit }' "$1"; }
 json_number() { sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\([-+0-9.eE]*\).*/\1/p" "$1" | head -1; }
-slim="$build/cli/support-slim" eval_tool="$build/tools/slim-eval"
+slim="$build/cli/support-slim" eval_tool="$build/eval/slim-eval"
 [ -x "$slim" ] && [ -x "$eval_tool" ] || die "build support-slim and slim-eval first"
-[ -f "$corpus/manifest.tsv" ] || die "no corpus in $corpus: run scripts/corpus.sh first"
+[ -f "$corpus/manifest.tsv" ] || die "no corpus in $corpus: run eval/run.sh corpus first"
 [ -n "$models" ] || models="$(awk -F'\t' 'NR > 1 && $2 == "organic" { printf "%s%s", sep, $1; sep = "," }' "$corpus/manifest.tsv")"
 export OPENBLAS_NUM_THREADS=1
 mkdir -p "$out"
@@ -36,7 +36,7 @@ prusa() {  # PLY DIR: PrusaSlicer's support (mean of 4 quarter turns) into DIR/p
   [ -s "$2/prusa.txt" ] && return 0
   mkdir -p "$2"
   "$eval_tool" measure "$1" --stl "$2/part.stl" >/dev/null || die "measure $1 failed"
-  "$repo/tools/slice_support.sh" "$2/part.stl" --slicer prusa --angle 45 --build "$build" --out "$2/slices" >"$2/prusa.txt.tmp" ||
+  "$repo/eval/studies/slice_support.sh" "$2/part.stl" --slicer prusa --angle 45 --build "$build" --out "$2/slices" >"$2/prusa.txt.tmp" ||
     die "slicing $1 failed"
   mv "$2/prusa.txt.tmp" "$2/prusa.txt"
   rm -f "$2/slices/"*.gcode "$2/part.stl"

@@ -1,4 +1,4 @@
-#include "print_setup.h"
+#include "print_frame.h"
 
 #include <cmath>
 #include <stdexcept>

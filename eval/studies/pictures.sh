@@ -1,4 +1,4 @@
-# The pictures of tools/evaluate.sh's report (sourced by it; uses its variables: out, parts,
+# The pictures of eval/studies/part.sh's report (sourced by it; uses its variables: out, parts,
 # base, slicer_list, turns, eval_tool, and its helpers xrun, die, kv, fmt).
 #
 #   before_after.png  each part with its risky faces red, from above and from below

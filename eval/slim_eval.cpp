@@ -1,4 +1,4 @@
-// slim-eval: the measuring steps of tools/evaluate.sh, one subcommand each. Every subcommand
+// slim-eval: the measuring steps of eval/studies/part.sh, one subcommand each. Every subcommand
 // prints "key=value" lines on stdout (for the script) and exits 1 with a one-line reason on
 // stderr on bad input.
 #include <cmath>
@@ -14,7 +14,7 @@
 #include "gcode_extrusion.h"
 #include "mesh_io/mesh_io.h"
 #include "orient_faces.h"
-#include "print_setup.h"
+#include "print_frame.h"
 #include "vtk_writer.h"
 
 namespace {
@@ -109,7 +109,6 @@ std::string triple(const Eigen::Vector3d& v) {
   return s.str();
 }
 
-double diagonal(const slim::Surface& s) { return (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm(); }
 
 int prepare(const Args& a) {
   const double size = a.get("--size") ? number("--size", *a.get("--size")) : 60.0;
@@ -135,14 +134,13 @@ int prepare(const Args& a) {
 
 int measure(const Args& a) {
   const slim::Surface s = slim::io::load_surface(a.positional[0]);
-  slim::OverhangOptions o;  // the part is in the print frame: +Z up
+  slim::PrintSetup o;  // the part is in the print frame: +Z up
   if (a.get("--angle")) o.alpha_max_deg = number("--angle", *a.get("--angle"));
-  o.plate_tolerance = a.get("--plate-tolerance") ? number("--plate-tolerance", *a.get("--plate-tolerance"))
-                                                 : 1e-3 * diagonal(s);
+  if (a.get("--plate-tolerance")) o.plate = slim::PlateRule::within(number("--plate-tolerance", *a.get("--plate-tolerance")));
   const slim::OverhangReport r = slim::analyse_overhang(s, o);
   std::cout << "risky_area=" << r.risky_area << "\nrisky_faces=" << r.risky_count << "\nshadow_volume=" << r.shadow_volume
             << "\narea=" << r.total_area
-            << "\nvolume=" << slim::signed_volume(s) << "\ndiag=" << diagonal(s)
+            << "\nvolume=" << slim::signed_volume(s) << "\ndiag=" << slim::bbox_diagonal(s.V)
             << "\nbbox_min=" << triple(s.V.colwise().minCoeff().transpose())
             << "\nbbox_max=" << triple(s.V.colwise().maxCoeff().transpose()) << "\n";
   if (const std::string* ref = a.get("--reference")) {

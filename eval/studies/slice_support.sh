@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The support a slicer builds under a part, as the mean over turns about the print axis.
 #
-#   tools/slice_support.sh PART.stl --slicer prusa|cura --angle DEG --out DIR [options]
+#   eval/studies/slice_support.sh PART.stl --slicer prusa|cura --angle DEG --out DIR [options]
 #
 # The part is in the print frame (+Z up, resting on z = 0; slim-eval prepare). Both slicers build
 # support under a footprint on a grid aligned to the part's bounding box, so their figure jitters
@@ -23,15 +23,15 @@
 # |total_vs_slicer_pct| (our sum of all extrusion against the slicer's own total). The G-codes
 # stay in DIR as <slicer>_turn<DEG>.gcode. Exits non-zero with a one-line reason on failure.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 
 usage() {
   cat <<'USAGE'
-usage: tools/slice_support.sh PART.stl --slicer prusa|cura --angle DEG --out DIR [options]
+usage: eval/studies/slice_support.sh PART.stl --slicer prusa|cura --angle DEG --out DIR [options]
   --turns LIST   quarter turns about +Z, in degrees (multiples of 90)      [0,90,180,270]
   --jobs N       slicer runs at a time                                              [2]
   --bed MM       square bed side (the part is centred on it)                      [300]
-  --build DIR    build tree holding tools/slim-eval                             [build]
+  --build DIR    build tree holding eval/slim-eval                              [build]
   --cura-definitions DIR  folder with fdmprinter.def.json and fdmextruder.def.json
                  [$SLIM_CURA_DEFINITIONS, else /var/cache/support-slimming/cura/definitions]
 USAGE
@@ -59,7 +59,7 @@ done
 [ -n "$out" ] || die "--out DIR is required"
 [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || die "--jobs expects a positive whole number, got '$jobs'"
 [[ "$bed" =~ ^[0-9]+(\.[0-9]+)?$ ]] || die "--bed expects mm, got '$bed'"
-eval_tool="$build/tools/slim-eval"
+eval_tool="$build/eval/slim-eval"
 [ -x "$eval_tool" ] || die "$eval_tool is missing: build the target slim-eval"
 awk -v a="$angle" 'BEGIN { exit !(a ~ /^[0-9]+(\.[0-9]+)?$/ && a > 0 && a < 90) }' ||
   die "--angle must lie strictly between 0 and 90 degrees, got '$angle'"

@@ -3,10 +3,16 @@
 # support, input -> result, mean of 4 turns; up is better) against the Hausdorff distance (% of
 # the bbox diagonal), one line per method across the budgets; PrusaSlicer solid, Cura dashed.
 #
-#   bench/slicer_frontier_plot.sh FRONTIER.tsv OUT.png        (FRONTIER.tsv: bench/slicer_frontier.sh)
+#   eval/run.sh frontier-plot [FRONTIER.tsv [OUT.png]]      (FRONTIER.tsv: eval/run.sh frontier)
+#
+# Defaults: out/frontier/frontier.tsv, and OUT.png beside it (frontier.png). Needs gnuplot.
 set -euo pipefail
-tsv="$1" png="$2"
-command -v gnuplot >/dev/null 2>&1 || { echo "slicer_frontier_plot: gnuplot is not installed" >&2; exit 1; }
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+case "${1:-}" in -h|--help) sed -n 2,8p "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;; esac
+tsv="${1:-$repo/out/frontier/frontier.tsv}"
+png="${2:-$(dirname "$tsv")/frontier.png}"
+[ -f "$tsv" ] || { echo "frontier-plot: no $tsv (eval/run.sh frontier writes it)" >&2; exit 1; }
+command -v gnuplot >/dev/null 2>&1 || { echo "frontier-plot: gnuplot is not installed" >&2; exit 1; }
 data="$(mktemp -d)"; trap 'rm -rf "$data"' EXIT
 mapfile -t models < <(awk -F'\t' 'NR > 1 && !seen[$1]++ { print $1 }' "$tsv")
 n=${#models[@]}

@@ -1,4 +1,4 @@
-// support_model_tool: the support model's validation steps (bench/support_model_validate.sh), one
+// support_model_tool: the support model's validation steps (eval/studies/support-model.sh), one
 // subcommand each; "key=value" lines on stdout, a one-line reason and exit 1 on bad input.
 //
 //   support_model_tool estimate MESH [--angle DEG] [--phases N] [--turns N] [--pixels N] [--layers]
@@ -39,7 +39,7 @@ int estimate(int argc, char** argv) {
     }
     if (i + 1 >= argc) throw std::invalid_argument(k + " needs a value");
     const char* v = argv[i + 1];
-    if (k == "--angle") o.alpha_max_deg = std::atof(v);
+    if (k == "--angle") o.print.alpha_max_deg = std::atof(v);
     else if (k == "--phases") o.grid_phases = std::atoi(v);
     else if (k == "--turns") o.turns = std::atoi(v);
     else if (k == "--pixels") o.pixels_per_cell = std::atoi(v);

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The support model (core/support_model/support_model.h) against the judge: PrusaSlicer and CuraEngine.
 #
-#   bench/support_model_validate.sh [options] [NAME=MESH ...]
+#   eval/run.sh support-model [options] [NAME=MESH ...]
 #
-# For every model (the corpus of scripts/corpus.sh, the T, mushroom and arch test shapes, and any
+# For every model (the corpus of eval/run.sh corpus, the T, mushroom and arch test shapes, and any
 # NAME=MESH given; all in the print frame at a 60 mm longest side) the input and the results of
 # support-slim (the paper's method at 5%, the coherent method at 5 and 10%) are
-#   - sliced by both slicers through tools/slice_support.sh (the judge's settings), each figure
+#   - sliced by both slicers through eval/studies/slice_support.sh (the judge's settings), each figure
 #     the mean over the quarter turns 0 and 90 degrees (--turns): the judge's other two, 180 and
 #     270, lay the support lines along the same axes as these two and give the same figures to
 #     within 0.3% (the bunny: 5104, 4721, 5118, 4704 mm³ at 0, 90, 180, 270), at twice the cost;
@@ -26,12 +26,12 @@
 # the meshes there and the table printed).
 #
 # Needs: a build with support_model_tool, slim-eval, support-slim and write_shape (--build); the
-# corpus (scripts/corpus.sh, run when missing); prusa-slicer, cura-engine and Cura's printer
+# corpus (eval/studies/corpus.sh, run when missing); prusa-slicer, cura-engine and Cura's printer
 # definitions (scripts/setup.sh). Cost: 4 slices per mesh (2 slicers × 2 turns), 2-6 s each on an
 # idle machine, two at a time: about 20 minutes cold for the 18 models × 4 meshes, seconds warm.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-die() { echo "support_model_validate: $*" >&2; exit 1; }
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+die() { echo "support-model: $*" >&2; exit 1; }
 kv() { awk -v k="$2" 'index($0, k "=") == 1 { print substr($0, length(k) + 2); exit }' "$1"; }
 
 usage() {
@@ -40,12 +40,12 @@ usage() {
 options:
   --build DIR     build tree                                          [build]
   --out DIR       where the meshes, slices and the table go           [out/support-model]
-  --corpus DIR    the corpus (scripts/corpus.sh --out DIR)             [data/corpus]
+  --corpus DIR    the corpus (eval/run.sh corpus --out DIR)           [data/corpus]
   --jobs N        slicer runs at a time                               [2]
   --no-corpus     only the test shapes and the NAME=MESH given
   --table-only    no slicing or slimming: the table from the files in OUT
   --angle DEG     alpha_max                                           [45]
-  --turns LIST    the quarter turns sliced (tools/slice_support.sh)     [0,90]
+  --turns LIST    the quarter turns sliced (studies/slice_support.sh) [0,90]
 EOF
 }
 
@@ -68,7 +68,7 @@ while [ $# -gt 0 ]; do
   esac
 done
 build="$(cd "$build" 2>/dev/null && pwd)" || die "no build tree at the --build path"
-for f in bench/support_model_tool tools/slim-eval cli/support-slim tests/eval/write_shape; do
+for f in eval/support_model_tool eval/slim-eval cli/support-slim tests/eval/write_shape; do
   [ -x "$build/$f" ] || die "$build/$f is missing: build the project first"
 done
 mkdir -p "$out"
@@ -79,7 +79,7 @@ models="$out/models.tsv"
 if [ -z "$table_only" ]; then
   : >"$models"
   if [ -n "$use_corpus" ]; then
-    [ -s "$corpus/manifest.tsv" ] || "$repo/scripts/corpus.sh" --out "$corpus" >/dev/null || die "scripts/corpus.sh failed"
+    [ -s "$corpus/manifest.tsv" ] || "$repo/eval/studies/corpus.sh" --out "$corpus" >/dev/null || die "eval/studies/corpus.sh failed"
     awk -F'\t' -v dir="$corpus" 'NR > 1 { print $1 "\t" $2 "\t" dir "/" $1 ".ply" }' "$corpus/manifest.tsv" >>"$models"
   fi
   for shape in t mushroom arch; do
@@ -95,7 +95,7 @@ if [ -z "$table_only" ]; then
   while IFS=$'\t' read -r name kind mesh; do
     dir="$out/$name"
     mkdir -p "$dir"
-    [ -s "$dir/input.ply" ] || "$build/tools/slim-eval" prepare "$mesh" "$dir/input" --size 60 >/dev/null ||
+    [ -s "$dir/input.ply" ] || "$build/eval/slim-eval" prepare "$mesh" "$dir/input" --size 60 >/dev/null ||
       die "cannot prepare $mesh"
     for v in "${variants[@]:1}"; do
       [ -s "$dir/$v.ply" ] && continue
@@ -104,10 +104,10 @@ if [ -z "$table_only" ]; then
         --max-deviation "$budget" --angle "$angle" --quiet >"$dir/$v.log" 2>&1 || die "support-slim failed on $name ($v)"
     done
     for v in "${variants[@]}"; do
-      [ -s "$dir/$v.stl" ] || "$build/tools/slim-eval" measure "$dir/$v.ply" --stl "$dir/$v.stl" >/dev/null
+      [ -s "$dir/$v.stl" ] || "$build/eval/slim-eval" measure "$dir/$v.ply" --stl "$dir/$v.stl" >/dev/null
       for slicer in prusa cura; do
         [ -s "$dir/$v.$slicer/${slicer}_turns.txt" ] && continue
-        "$repo/tools/slice_support.sh" "$dir/$v.stl" --slicer "$slicer" --angle "$angle" --out "$dir/$v.$slicer" \
+        "$repo/eval/studies/slice_support.sh" "$dir/$v.stl" --slicer "$slicer" --angle "$angle" --out "$dir/$v.$slicer" \
           --turns "$turns" --jobs "$jobs" --build "$build" >"$dir/$v.$slicer.log" 2>&1 || die "slicing $name ($v) with $slicer failed"
         rm -f "$dir/$v.$slicer"/*.gcode  # the figures are kept, the G-code (megabytes) is not
       done
@@ -123,7 +123,7 @@ while IFS=$'\t' read -r name kind mesh; do
     d="$out/$name"
     [ -s "$d/$v.ply" ] || continue
     for phases in 4 1; do
-      "$build/bench/support_model_tool" estimate "$d/$v.ply" --angle "$angle" --phases "$phases" >"$d/$v.model$phases.txt"
+      "$build/eval/support_model_tool" estimate "$d/$v.ply" --angle "$angle" --phases "$phases" >"$d/$v.model$phases.txt"
     done
     [ -s "$d/$v.prusa/prusa_turns.txt" ] && [ -s "$d/$v.cura/cura_turns.txt" ] && [ -s "$d/$v.model1.txt" ] || continue
     open="$(kv "$d/input.model1.txt" open_edges)"

@@ -1,4 +1,4 @@
-#include "core/optimizer/slimmer.h"
+#include "core/optimizer/support_slimmer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -36,13 +36,14 @@ std::string gigabytes(double bytes) {
 // the domain, and the optimizer needs several times more. Refuse before allocating it.
 void require_optimizer_memory(const TetMesh& domain, const SlimmingOptions& o) {
   const double needed = optimizer_bytes(domain.T.rows(), domain.V.rows());
-  if (!(o.max_memory_bytes > 0.0 && needed > o.max_memory_bytes)) return;
+  if (!(o.guards.max_memory_bytes && needed > *o.guards.max_memory_bytes)) return;
+  const double budget = *o.guards.max_memory_bytes;
   std::string msg = "the optimizer would need about " + gigabytes(needed) + " for this domain (" +
                     std::to_string(domain.T.rows()) + " tets), more than the memory budget of " +
-                    gigabytes(o.max_memory_bytes) + " allows; ";
+                    gigabytes(budget) + " allows; ";
   if (o.domain == DomainKind::Voxel) {
     // Tets grow like the cube of the resolution, the factor somewhat faster.
-    const int fitting = std::max(1, static_cast<int>(o.resolution * std::cbrt(o.max_memory_bytes / needed) * 0.9));
+    const int fitting = std::max(1, static_cast<int>(o.resolution * std::cbrt(budget / needed) * 0.9));
     msg += "use a voxel resolution of at most " + std::to_string(fitting);
   } else {
     msg += "use the voxel domain, or a coarser mesh";
@@ -52,9 +53,15 @@ void require_optimizer_memory(const TetMesh& domain, const SlimmingOptions& o) {
 
 }  // namespace
 
-double deviation_budget(const SlimmingOptions& o, double diag) {
-  if (o.max_deviation_mm > 0.0) return o.max_deviation_mm;
-  return o.max_deviation_pct > 0.0 ? o.max_deviation_pct / 100.0 * diag : HUGE_VAL;
+SlimmingRule slimming_rule(const Surface& input, const SlimmingOptions& o) {
+  SlimmingRule rule;
+  rule.diagonal_mm = bbox_diagonal(input.V);
+  if (!(rule.diagonal_mm > 0.0))
+    throw std::invalid_argument("the mesh has zero extent (all its vertices coincide), so there is no shape to "
+                                "reshape; check the file and its units");
+  rule.print = print_rule(o.print, rule.diagonal_mm);
+  rule.budget_mm = o.budget.mm(rule.diagonal_mm);
+  return rule;
 }
 
 double optimizer_bytes(Eigen::Index tets, Eigen::Index vertices) {
@@ -62,34 +69,32 @@ double optimizer_bytes(Eigen::Index tets, Eigen::Index vertices) {
 }
 
 SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domain, const OverhangReport& before,
-                               const SlimmingOptions& o, const std::function<void(double, const std::string&)>& report)
+                               const SlimmingOptions& o, const SlimmingRule& rule,
+                               const std::function<void(double, const std::string&)>& report)
     : input_(input.get()),
       options_(o),
-      coherence_(coherence_of(o)),
       domain_(std::move(domain)),
+      measure_(rule.print),
+      budget_(rule.budget_mm),
       current_(input_),
       current_view_(input.derived(current_)),
       overhang_(before),
       displacement_(Eigen::VectorXd::Zero(input_.V.rows())) {
   const TetMesh& mesh = domain_.mesh;
   require_optimizer_memory(mesh, o);
-  const Eigen::Vector3d d = unit_print_direction(o.print_direction);
-  const double diag = (input_.V.colwise().maxCoeff() - input_.V.colwise().minCoeff()).norm();
-  measure_.print_direction = d;
-  measure_.alpha_max_deg = o.alpha_max_deg;
-  measure_.plate_tolerance = o.plate_tolerance >= 0.0 ? o.plate_tolerance : 1e-3 * diag;
+  const Eigen::Vector3d& d = rule.print.d;
 
   const Points n0 = face_normals(input_);
   local_.set_rest(mesh);
   local_.pieces = constraint_pieces(domain_.embedding, mesh.T.rows(), before.on_plate, n0);
   local_.d = d;
-  local_.tau = std::sin(std::max(0.0, o.alpha_max_deg - margin_of(o)) * M_PI / 180.0);
-  local_.max_step = max_step_of(o) * M_PI / 180.0;
-  local_.edge_slack = coherence_.edge_turn_slack_deg * M_PI / 180.0;
-  local_.proxies.max_k = o.max_k;
+  local_.tau = std::sin(std::max(0.0, rule.print.alpha_max_deg - *o.steps.margin_deg) * M_PI / 180.0);
+  local_.max_step = *o.steps.max_step_deg * M_PI / 180.0;
+  local_.edge_slack = o.coherence.edge_turn_slack_deg * M_PI / 180.0;
+  local_.proxies.max_k = o.steps.max_k;
   {
     ScopedSeconds timer(times_.local);  // the local step's input
-    TieDirections ties = tie_directions(input_, mesh, local_.pieces, n0, before.risky, d, diag, coherence_);
+    TieDirections ties = tie_directions(input_, mesh, local_.pieces, n0, before.risky, d, rule.diagonal_mm, o.coherence);
     local_.tie = std::move(ties.tie);
     local_.edge_axis = std::move(ties.edge_axis);
   }
@@ -101,12 +106,11 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   factor_global_step(before);
   state_ = local_.make_state();
   V_ = mesh.V;
-  budget_ = deviation_budget(o, diag);
   for (const auto& tet_pieces : local_.pieces)
     for (const auto& pc : tet_pieces) piece_area_ += pc.second;  // AE is a share of this area
   plate_ = (mesh.V * d).minCoeff();
   volume_target_ = signed_volume(input_);
-  if (coherence_.keep_volume) volume_ = std::make_unique<VolumeKeeping>(domain_.embedding, input_.F, mesh.V.rows());
+  if (o.keep_volume) volume_ = std::make_unique<VolumeKeeping>(domain_.embedding, input_.F, mesh.V.rows());
 }
 
 // Weights: the rest volumes (the paper), with the coherent factors and the features' weight;
@@ -118,9 +122,9 @@ void SupportSlimmer::factor_global_step(const OverhangReport& before) {
   for (int t = 0; t < nt; ++t) {
     const auto& pieces = local_.pieces[static_cast<size_t>(t)];
     weights_(t) = tet_volume(mesh.V, mesh.T.row(t));
-    if (pieces.empty()) weights_(t) *= coherence_.interior_weight;
+    if (pieces.empty()) weights_(t) *= options_.coherence.interior_weight;
     const bool risky = std::any_of(pieces.begin(), pieces.end(), [&](const auto& pc) { return before.risky[static_cast<size_t>(pc.first)]; });
-    if (risky) weights_(t) *= coherence_.risky_boost;
+    if (risky) weights_(t) *= options_.coherence.risky_boost;
     if (features_->tet_feature()[static_cast<size_t>(t)] >= 0) weights_(t) *= kFeatureWeight;
   }
   std::vector<int> pinned;
@@ -132,7 +136,7 @@ void SupportSlimmer::factor_global_step(const OverhangReport& before) {
     ScopedSeconds timer(times_.factorization);
     arap_ = std::make_unique<ArapSolver>(mesh, weights_, pinned, ao);
   }
-  if (coherence_.smoothing > 0.0 || coherence_.propagation > 0.0) {
+  if (options_.coherence.smoothing > 0.0 || options_.coherence.propagation > 0.0) {
     std::vector<bool> holds_faces(static_cast<size_t>(nt));
     for (int t = 0; t < nt; ++t) holds_faces[static_cast<size_t>(t)] = !local_.pieces[static_cast<size_t>(t)].empty();
     neighbours_ = tet_neighbours(mesh.T, mesh.V.rows(), holds_faces);
@@ -144,7 +148,7 @@ IterationStats SupportSlimmer::step() {
   {
     ScopedSeconds timer(times_.local);
     local_.run(V_, state_);
-    blend_rotations(neighbours_, local_.skip, coherence_.smoothing, coherence_.propagation, state_);
+    blend_rotations(neighbours_, local_.skip, options_.coherence.smoothing, options_.coherence.propagation, state_);
     features_->fit(V_, weights_, local_, state_);
   }
   Points proposed;
@@ -171,15 +175,15 @@ IterationStats SupportSlimmer::step() {
 
 bool SupportSlimmer::guard(Points& proposed, int& held_back, int& features_held, bool& inversion_cut) {
   const Tets& T = domain_.mesh.T;
-  bool guarded = keep_above_plate(proposed, measure_.print_direction, plate_);
-  if (std::isfinite(budget_)) {
-    const BudgetGuard budget = keep_within_budget(domain_.mesh.V, V_, proposed, budget_, features_->vertex_feature());
+  bool guarded = keep_above_plate(proposed, measure_.d, plate_);
+  if (budget_) {
+    const BudgetGuard budget = keep_within_budget(domain_.mesh.V, V_, proposed, *budget_, features_->vertex_feature());
     guarded = guarded || budget.moved();
     features_held = budget.groups_held;
   }
   const std::vector<int> probe = inverted_tets(proposed, T);
   if (probe.empty()) return guarded;
-  if (coherence_.local_inversion_guard &&
+  if (options_.guards.local_inversion_guard &&
       roll_back_inverting(V_, proposed, T, features_->vertex_feature(), probe, held_back))
     return true;
   cut_back_to_valid(V_, proposed, T, probe);

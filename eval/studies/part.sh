@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # The independent judge: does Support Slimming save support material in a real slicer?
 #
-#   tools/evaluate.sh MESH [options]
+#   eval/run.sh part MESH [options]
 #
 #  1. The part in the print frame (print direction turned onto +Z), scaled so its longest side
 #     is --size mm (default 60), resting on the plate (slim-eval prepare).
 #  2. Support Slimming on it (the support-slim CLI, the same core as the MeshLab filter).
 #  3. Input and result sliced by PrusaSlicer and by CuraEngine under identical settings,
-#     automatic supports at alpha_max (tools/slice_support.sh), each at 4 quarter turns about the
+#     automatic supports at alpha_max (eval/studies/slice_support.sh), each at 4 quarter turns about the
 #     print axis: the slicers' support grid follows the part's bounding box, so a single run
 #     jitters by several percent with the grid's phase; every support figure is the mean.
 #  4. The support filament summed from the G-code's support sections (slim-eval gcode), checked
@@ -16,7 +16,7 @@
 #     filter (meshlabserver, both directions), volume change and crease share (the share of edge
 #     length whose dihedral angle changed by more than 10 degrees, and its 99th percentile),
 #     largest vertex displacement.
-#  6. Pictures (tools/evaluate_pictures.sh; f3d under Xvfb, ImageMagick): input and result with
+#  6. Pictures (eval/studies/pictures.sh; f3d under Xvfb, ImageMagick): input and result with
 #     the risky faces red; the displacement as a heat map with a colour bar in mm; the support
 #     each slicer will print, drawn from the G-code's support extrusions beside the part's walls.
 #  7. OUT/report.md (the tables, the pictures, the settings) and OUT/metrics.txt (key=value).
@@ -31,11 +31,11 @@
 # (scripts/setup.sh installs them).
 # Exits non-zero with a one-line reason on bad input or when a step fails.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 
 usage() {
   cat <<'EOF'
-usage: tools/evaluate.sh MESH [options]
+usage: eval/run.sh part MESH [options]
 
   --out DIR               where the report and its files go        [out/eval/<mesh name>]
   --size MM               longest side of the part on the plate (0: keep the mesh's scale) [60]
@@ -49,7 +49,7 @@ usage: tools/evaluate.sh MESH [options]
   --orient-effort E       fast, normal or thorough (with --orient)                   [normal]
   --slicers LIST          prusa, or prusa,cura                                  [prusa,cura]
   --turns LIST            quarter turns about +Z each slicer figure is the mean of [0,90,180,270]
-  --build DIR             build tree holding cli/support-slim, tools/slim-eval, prefix/ [build]
+  --build DIR             build tree holding cli/support-slim, eval/slim-eval, prefix/  [build]
   --name TEXT             the part's name in the report                  [the mesh file name]
   --quiet                 print only the table at the end
   -h, --help              this text
@@ -104,7 +104,7 @@ is_number "$size" || die "--size expects a number of mm, got '$size'"
 is_number "$angle" || die "--angle expects degrees, got '$angle'"
 awk -v a="$angle" 'BEGIN { exit !(a > 0 && a < 90) }' || die "--angle must lie strictly between 0 and 90 degrees, got $angle"
 build="$(cd "$build" 2>/dev/null && pwd)" || die "no build tree at the --build path"
-slim="$build/cli/support-slim"; eval_tool="$build/tools/slim-eval"; server="$build/prefix/bin/meshlabserver"
+slim="$build/cli/support-slim"; eval_tool="$build/eval/slim-eval"; server="$build/prefix/bin/meshlabserver"
 for f in "$slim" "$eval_tool" "$server"; do
   [ -x "$f" ] || die "$f is missing: build the targets support-slim, slim-eval and filter_support_slimming"
 done
@@ -172,7 +172,7 @@ IFS=, read -r -a slicer_list <<<"$slicers"
 for part in "${parts[@]}"; do
   for slicer in "${slicer_list[@]}"; do
     say "slicing $part.stl ($slicer, turns $turns)"
-    "$repo/tools/slice_support.sh" "$out/$part.stl" --slicer "$slicer" --angle "$angle" --turns "$turns" --bed "$bed" \
+    "$repo/eval/studies/slice_support.sh" "$out/$part.stl" --slicer "$slicer" --angle "$angle" --turns "$turns" --bed "$bed" \
       --build "$build" --out "$out/slices/$part" >"$out/${part}_$slicer.txt" 2>"$out/$part.err" ||
       die "$(tail -1 "$out/$part.err" | sed 's/^slice_support: //')"
   done
@@ -184,14 +184,14 @@ done
 
 # ---- 5. shape change through MeshLab's Hausdorff Distance filter, both directions ---------------
 say "Hausdorff distance (meshlabserver)"
-"$repo/tools/hausdorff.sh" "$out/$base.ply" "$out/slimmed.ply" --diag "$diag" --out "$out" --build "$build" \
+"$repo/eval/studies/hausdorff.sh" "$out/$base.ply" "$out/slimmed.ply" --diag "$diag" --out "$out" --build "$build" \
   >"$out/hausdorff.txt" 2>"$out/hausdorff.err" || die "$(tail -1 "$out/hausdorff.err" | sed 's/^hausdorff: //')"
 hausdorff="$(kv "$out/hausdorff.txt" hausdorff_mm)"; mean_dist="$(kv "$out/hausdorff.txt" mean_distance_mm)"
 
 # ---- 6. pictures: risky faces, displacement, the slicers' support; same cameras throughout ------
 say "rendering"
-# shellcheck source=evaluate_pictures.sh
-. "$repo/tools/evaluate_pictures.sh"
+# shellcheck source=pictures.sh
+. "$repo/eval/studies/pictures.sh"
 render_pictures
 
 # ---- 7. report ----------------------------------------------------------------------------------
@@ -363,7 +363,7 @@ turn_table() {  # the figure of each turn: how far a single run can be off
   echo "- Support Slimming: \`support-slim ${pose_args[*]/#$out\//} --angle $angle --plate-tolerance $plate_tol${slim_args[*]:+ ${slim_args[*]}}\`"
   echo "  on the part in the print frame; it stopped after $iterations iterations ($stop_reason)."
   echo "- Slicers: $(prusa-slicer --help 2>/dev/null | grep -m1 -o 'PrusaSlicer-[^ ]*')$( [ -z "$cura_before" ] || echo ", CuraEngine $(CuraEngine help 2>&1 | grep -m1 -o 'version [0-9.]*' | cut -d' ' -f2)"),"
-  echo "  with the settings of \`tools/slice_support.sh\` (0.2 mm layers, 2 walls, 15% infill, automatic support everywhere),"
+  echo "  with the settings of \`eval/studies/slice_support.sh\` (0.2 mm layers, 2 walls, 15% infill, automatic support everywhere),"
   echo "  each part at turns $turns about +Z."
   echo "- Support: the filament extruded (E rising while X/Y move, wipes and retractions left out) in the"
   echo "  G-code's support sections (PrusaSlicer: \`Support material\`, \`Support material interface\`; Cura:"

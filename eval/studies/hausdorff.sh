@@ -3,19 +3,20 @@
 # Distance" filter run by meshlabserver both ways (A sampled against B, and B against A), 100000
 # samples on faces, edges and vertices.
 #
-#   tools/hausdorff.sh A.ply B.ply --diag MM --out DIR [--build DIR]
+#   eval/run.sh hausdorff A.ply B.ply --diag MM --out DIR [--build DIR]
 #
 # MM bounds the search (use the bounding-box diagonal). Prints hausdorff_mm (the larger of the
 # two maxima) and mean_distance_mm (the mean of the two means). Needs the private MeshLab prefix
 # of a build (BUILD/prefix/bin/meshlabserver) and Xvfb. Exits non-zero with a one-line reason.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 die() { echo "hausdorff: $*" >&2; exit 1; }
 a="" b="" diag="" out="" build="$repo/build"
 while [ $# -gt 0 ]; do
   case "$1" in
     --diag|--out|--build) [ $# -ge 2 ] || die "$1 needs a value"
       case "$1" in --diag) diag="$2" ;; --out) out="$2" ;; --build) build="$2" ;; esac; shift 2 ;;
+    -h|--help) sed -n 2,10p "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) die "unknown option $1" ;;
     *) if [ -z "$a" ]; then a="$1"; elif [ -z "$b" ]; then b="$1"; else die "more than two meshes given"; fi; shift ;;
   esac
