@@ -87,6 +87,10 @@ void print_shape_cost(const SlimmingFigures& f, bool oriented) {
               "                  edge length (dihedral angle changed > 10 deg; 99th percentile of the change %.2f deg)\n",
               f.hausdorff_mm, f.hausdorff_pct, oriented ? " as given" : "", f.volume_change_pct, f.crease_share_pct,
               f.crease_p99_deg);
+  std::printf("  proportions     extents x %+.2f%%, y %+.2f%%, z %+.2f%%, height %+.2f%%; best-fit affine map %.2f%% from a\n"
+              "                  rigid motion; mean displacement %.4g mm (%.2f%% of the bbox diagonal%s); %ld folded faces\n",
+              f.extent_change_x_pct, f.extent_change_y_pct, f.extent_change_z_pct, f.height_change_pct, f.affine_departure_pct,
+              f.mean_displacement_mm, f.mean_displacement_pct, oriented ? " as given" : "", f.folded_faces);
   if (f.budget_mm > 0.0)
     std::printf("  budget          %.4g mm (%.3g%% of the bbox diagonal%s): no vertex moves further\n", f.budget_mm, f.budget_pct,
                 oriented ? " of the part as given" : "");

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry/proportions.h"
 #include "core/geometry/shape_metrics.h"
 #include "core/print/overhang.h"
 #include "gcode_extrusion.h"
@@ -154,6 +155,10 @@ int measure(const Args& a) {
     if (c.volume_defined) std::cout << "volume_change_pct=" << c.volume_change_pct << "\n";
     std::cout << "crease_share_pct=" << c.crease_share_pct << "\ncrease_p99_deg=" << c.crease_p99_deg
               << "\nmax_crease_deg=" << c.max_crease_deg << "\ninterior_edges=" << c.interior_edges << "\n";
+    const slim::Proportions p = slim::proportions(r0, s.V, Eigen::Vector3d::UnitZ());  // the print frame: +Z up
+    std::cout << "extent_change_x_pct=" << p.extent_change_pct.x() << "\nextent_change_y_pct=" << p.extent_change_pct.y()
+              << "\nextent_change_z_pct=" << p.extent_change_pct.z() << "\nheight_change_pct=" << p.height_change_pct
+              << "\naffine_departure_pct=" << p.affine_departure_pct << "\nfolded_faces=" << p.folded_faces << "\n";
     if (const std::string* vtk = a.get("--displacement-vtk")) slim::eval::write_vtk_mesh(*vtk, s, "displacement_mm", moved);
   } else if (a.get("--displacement-vtk")) {
     die("--displacement-vtk needs --reference");

@@ -100,6 +100,11 @@ void log_slimming(FilterRun& run, const slim::SlimmingResult& r, const slim::Sli
                                                                    f.budget_pct, orient ? " as given" : "")
                                                      .toUtf8().constData()
                                                : "none"));
+  run.info(QString::asprintf("Support Slimming: proportions: extents x %+.2f%%, y %+.2f%%, z %+.2f%%, height %+.2f%%; "
+                             "best-fit affine map %.2f%% from a rigid motion; mean displacement %.4g mm (%.2f%% of the "
+                             "bbox diagonal); %ld folded faces",
+                             f.extent_change_x_pct, f.extent_change_y_pct, f.extent_change_z_pct, f.height_change_pct,
+                             f.affine_departure_pct, f.mean_displacement_mm, f.mean_displacement_pct, f.folded_faces));
   if (r.inside_out) run.warning(QString("Support Slimming: ") + kInsideOutNotice);
   if (f.open_edges > 0) run.warning(QString("Support Slimming: ") + slim::open_mesh_note(f.open_edges).c_str());
   for (const auto& [key, value] : slim::named_figures(f)) run.outputs[key] = value;

@@ -209,6 +209,9 @@ area_before="$(kv "$out/input.txt" area)"; area_after="$(kv "$out/slimmed.txt" a
 volume_before="$(kv "$out/$base.txt" volume)"; volume_after="$(kv "$out/slimmed.txt" volume)"
 max_disp="$(kv "$out/slimmed.txt" max_displacement)"
 crease_share="$(kv "$out/slimmed.txt" crease_share_pct)"; crease_p99="$(kv "$out/slimmed.txt" crease_p99_deg)"
+mean_disp="$(kv "$out/slimmed.txt" mean_displacement)"; height_change="$(kv "$out/slimmed.txt" height_change_pct)"
+affine="$(kv "$out/slimmed.txt" affine_departure_pct)"; folded="$(kv "$out/slimmed.txt" folded_faces)"
+extents="$(for a in x y z; do kv "$out/slimmed.txt" "extent_change_${a}_pct"; done | tr '\n' ' ')"
 proxy_before="$(kv "$out/input.txt" shadow_volume)"; proxy_after="$(kv "$out/slimmed.txt" shadow_volume)"
 if [ -n "$orient" ]; then
   support_oriented="$(sup oriented prusa)"; cura_oriented="$(sup oriented cura)"
@@ -266,6 +269,15 @@ elapsed=$((SECONDS - started))
   echo "mean_distance_mm=$mean_dist"
   echo "mean_distance_pct=$(pct_of_diag "$mean_dist")"
   echo "max_displacement_mm=$max_disp"
+  echo "mean_displacement_mm=$mean_disp"
+  echo "mean_displacement_pct=$(pct_of_diag "$mean_disp")"
+  read -r extent_x extent_y extent_z <<<"$extents"
+  echo "extent_change_x_pct=$extent_x"
+  echo "extent_change_y_pct=$extent_y"
+  echo "extent_change_z_pct=$extent_z"
+  echo "height_change_pct=$height_change"
+  echo "affine_departure_pct=$affine"
+  echo "folded_faces=$folded"
   echo "iterations=$iterations"
   echo "slim_seconds=$slim_seconds"
   echo "angle=$angle"
@@ -283,6 +295,8 @@ shape_rows() {  # WITH_VOLUME(yes/no) LEADING_EMPTY_CELLS
   echo "| Hausdorff distance (symmetric) | $2$(fmt 3 "$hausdorff") mm ($(pct_of_diag "$hausdorff")% of diag) |"
   echo "| mean distance (both ways) | $2$(fmt 3 "$mean_dist") mm ($(pct_of_diag "$mean_dist")% of diag) |"
   echo "| largest vertex displacement | $2$(fmt 3 "$max_disp") mm ($(pct_of_diag "$max_disp")% of diag) |"
+  echo "| mean vertex displacement | $2$(fmt 3 "$mean_disp") mm ($(pct_of_diag "$mean_disp")% of diag) |"
+  echo "| proportions | $2height $(fmt 2 "$height_change")%, best-fit affine map $(fmt 2 "$affine")% from rigid, $folded folded faces |"
 }
 mm3() { [ -n "$1" ] && echo "$(fmt 0 "$1") mm³" || echo "n/a"; }
 

@@ -11,6 +11,9 @@
 #include <sstream>
 #include <string>
 
+#include <Eigen/QR>
+#include <Eigen/SVD>
+
 #include "cli_run.h"
 #include "core/geometry/shape_metrics.h"
 #include "core/geometry/surface_distance.h"
@@ -77,6 +80,29 @@ TEST(CliReport, FiguresAreThoseOfTheFilesWritten) {
   EXPECT_NEAR(f.at("hausdorff_pct"), 100 * f.at("hausdorff_mm") / diag, 1e-9);
   const double moved = (slimmed.V - in.V).rowwise().norm().maxCoeff();
   EXPECT_NEAR(f.at("max_displacement_mm"), moved, 1e-4);
+  // The proportions, from the files: the extents of their boxes, the height along +Z, the mean
+  // move, the faces turned over, and the best-fit affine map with its translation by QR.
+  const Eigen::RowVector3d box_in = in.V.colwise().maxCoeff() - in.V.colwise().minCoeff();
+  const Eigen::RowVector3d box_out = slimmed.V.colwise().maxCoeff() - slimmed.V.colwise().minCoeff();
+  const char* extent_keys[3] = {"extent_change_x_pct", "extent_change_y_pct", "extent_change_z_pct"};
+  for (int axis = 0; axis < 3; ++axis)
+    EXPECT_NEAR(f.at(extent_keys[axis]), 100 * (box_out(axis) / box_in(axis) - 1), 1e-3) << extent_keys[axis];
+  EXPECT_EQ(f.at("height_change_pct"), f.at("extent_change_z_pct"));
+  EXPECT_NEAR(f.at("mean_displacement_pct"), 100 * (slimmed.V - in.V).rowwise().norm().mean() / diag, 1e-4);
+  long folded = 0;
+  for (Eigen::Index i = 0; i < in.F.rows(); ++i) {
+    auto cross = [&](const Points& V) {
+      const Eigen::Vector3d a = V.row(in.F(i, 0)), b = V.row(in.F(i, 1)), c = V.row(in.F(i, 2));
+      return Eigen::Vector3d((b - a).cross(c - a));
+    };
+    folded += cross(in.V).dot(cross(slimmed.V)) < 0;
+  }
+  EXPECT_EQ(f.at("folded_faces"), static_cast<double>(folded));
+  Eigen::MatrixXd X(in.V.rows(), 4);
+  X << in.V, Eigen::VectorXd::Ones(in.V.rows());
+  const Eigen::MatrixXd fit = X.colPivHouseholderQr().solve(Eigen::MatrixXd(slimmed.V));  // 4 by 3: [A^T; t^T]
+  const Eigen::Vector3d sigma = Eigen::JacobiSVD<Eigen::Matrix3d>(Eigen::Matrix3d(fit.topRows(3))).singularValues();
+  EXPECT_NEAR(f.at("affine_departure_pct"), 100 * (sigma.array() - 1).abs().maxCoeff(), 1e-3);
   // The budget, as given and as a length, and both distances inside it.
   EXPECT_DOUBLE_EQ(f.at("budget_pct"), 5.0);
   EXPECT_NEAR(f.at("budget_mm"), 0.05 * diag, 1e-9 * diag);

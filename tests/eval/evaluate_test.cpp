@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/geometry/proportions.h"
 #include "core/geometry/shape_metrics.h"
 #include "gcode_extrusion.h"
 #include "key_values.h"
@@ -111,6 +112,13 @@ TEST(Evaluate, SlimmedArchNeedsLessSupportInPrusaSlicer) {
   EXPECT_NEAR(j.metrics.at("volume_change_pct"), c.volume_change_pct, 1e-3);
   EXPECT_NEAR(j.metrics.at("crease_share_pct"), c.crease_share_pct, 1e-3);
   EXPECT_NEAR(j.metrics.at("crease_p99_deg"), c.crease_p99_deg, 1e-3);
+  // The proportions are the core's too, in the print frame (+Z up).
+  const Surface input_ply = io::load_surface((j.out / "input.ply").string());
+  const Proportions p = proportions(input_ply, io::load_surface((j.out / "slimmed.ply").string()).V, Eigen::Vector3d::UnitZ());
+  EXPECT_NEAR(j.metrics.at("height_change_pct"), p.height_change_pct, 1e-3);
+  EXPECT_NEAR(j.metrics.at("extent_change_x_pct"), p.extent_change_pct.x(), 1e-3);
+  EXPECT_NEAR(j.metrics.at("affine_departure_pct"), p.affine_departure_pct, 1e-3);
+  EXPECT_EQ(j.metrics.at("folded_faces"), static_cast<double>(p.folded_faces));
 
   // Shape: every sample moves with its triangle, so the Hausdorff distance MeshLab measures
   // cannot exceed the largest vertex displacement, which the 5% budget bounds.

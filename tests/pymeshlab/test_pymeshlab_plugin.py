@@ -123,6 +123,22 @@ class PyMeshLabPluginTest(unittest.TestCase):
         self.assertLess(abs(out["volume_change_pct"]), 2.0)
         self.assertGreaterEqual(out["crease_share_pct"], 0.0)
         self.assertLessEqual(out["crease_share_pct"], 100.0)
+        # The proportions, computed here with numpy: extents, height (+Z), mean move, folds, and the
+        # best-fit affine map (with its translation, by least squares) against a rigid motion.
+        box_in, box_out = self.V.max(axis=0) - self.V.min(axis=0), W.max(axis=0) - W.min(axis=0)
+        for axis, key in enumerate(("extent_change_x_pct", "extent_change_y_pct", "extent_change_z_pct")):
+            self.assertAlmostEqual(out[key], 100.0 * (box_out[axis] / box_in[axis] - 1.0), delta=1e-3)
+        self.assertAlmostEqual(out["height_change_pct"], out["extent_change_z_pct"], delta=1e-9)
+        self.assertAlmostEqual(out["mean_displacement_pct"], 100.0 * moved.mean() / diagonal, delta=1e-4)
+
+        def crosses(P):
+            a, b, c = P[self.F[:, 0]], P[self.F[:, 1]], P[self.F[:, 2]]
+            return np.cross(b - a, c - a)
+        self.assertEqual(out["folded_faces"], int(np.sum(np.einsum("ij,ij->i", crosses(self.V), crosses(W)) < 0)))
+        X = np.hstack([self.V, np.ones((len(self.V), 1))])
+        fit = np.linalg.lstsq(X, W, rcond=None)[0]  # 4 by 3: the linear part's transpose, then the shift
+        sigma = np.linalg.svd(fit[:3, :], compute_uv=False)
+        self.assertAlmostEqual(out["affine_departure_pct"], 100.0 * np.abs(sigma - 1.0).max(), delta=1e-3)
         self.assertGreaterEqual(W[:, 2].min(), self.V[:, 2].min() - 1e-9)  # nothing below the plate
 
     def test_print_orientation_turns_the_part_rigidly(self):

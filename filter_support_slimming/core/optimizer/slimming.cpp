@@ -187,6 +187,7 @@ SlimmingResult slim_at_resolution(const CheckedSurface& checked, const SlimmingO
   };
   SlimmingResult r = unchanged(input, in.before);
   r.judged_by = in.judge();
+  r.print_direction = in.rule.print.d;
   if (in.given) {
     r.support_before_mm3 = r.support_after_mm3 = r.history[0].support_estimate = in.given->mean;
     r.support_slicer_phase_before_mm3 = r.support_slicer_phase_after_mm3 = r.history[0].support_slicer_phase =

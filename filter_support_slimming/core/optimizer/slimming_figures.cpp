@@ -1,5 +1,6 @@
 #include "core/optimizer/slimming_figures.h"
 
+#include "core/geometry/proportions.h"
 #include "core/geometry/surface_distance.h"
 
 namespace slim {
@@ -29,12 +30,20 @@ SlimmingFigures slimming_figures(const Surface& before, const SlimmingResult& r,
   f.volume_change_pct = shape.volume_change_pct;
   f.crease_share_pct = shape.crease_share_pct;
   f.crease_p99_deg = shape.crease_p99_deg;
+  const Proportions p = proportions(before, r.surface.V, r.print_direction);
+  f.extent_change_x_pct = p.extent_change_pct.x();
+  f.extent_change_y_pct = p.extent_change_pct.y();
+  f.extent_change_z_pct = p.extent_change_pct.z();
+  f.height_change_pct = p.height_change_pct;
+  f.affine_departure_pct = p.affine_departure_pct;
+  f.folded_faces = p.folded_faces;
   f.hausdorff_mm = hausdorff_of_moved(before, r.surface);  // the same mesh, moved
   f.hausdorff_pct = percent(f.hausdorff_mm, reference_diagonal);
   if (r.displacement.size() > 0) {
     f.max_displacement_mm = r.displacement.maxCoeff();
     f.mean_displacement_mm = r.displacement.mean();
   }
+  f.mean_displacement_pct = percent(f.mean_displacement_mm, reference_diagonal);
   f.budget_mm = r.deviation_budget_mm.value_or(0.0);
   f.budget_pct = percent(f.budget_mm, reference_diagonal);
   f.open_edges = r.open_edges;
@@ -69,10 +78,17 @@ std::vector<std::pair<const char*, double>> named_figures(const SlimmingFigures&
           {"volume_change_pct", f.volume_change_pct},
           {"crease_share_pct", f.crease_share_pct},
           {"crease_p99_deg", f.crease_p99_deg},
+          {"extent_change_x_pct", f.extent_change_x_pct},
+          {"extent_change_y_pct", f.extent_change_y_pct},
+          {"extent_change_z_pct", f.extent_change_z_pct},
+          {"height_change_pct", f.height_change_pct},
+          {"affine_departure_pct", f.affine_departure_pct},
+          {"folded_faces", static_cast<double>(f.folded_faces)},
           {"hausdorff_mm", f.hausdorff_mm},
           {"hausdorff_pct", f.hausdorff_pct},
           {"max_displacement_mm", f.max_displacement_mm},
           {"mean_displacement_mm", f.mean_displacement_mm},
+          {"mean_displacement_pct", f.mean_displacement_pct},
           {"budget_mm", f.budget_mm},
           {"budget_pct", f.budget_pct},
           {"open_edges", static_cast<double>(f.open_edges)},

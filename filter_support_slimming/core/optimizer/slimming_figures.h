@@ -11,8 +11,9 @@
 //                       user gave it (the pose does not change the budget; oriented_slimming.h).
 // Output (SlimmingFigures): mm, mm², mm³ and %; support_* from the support model (0 when the run
 //   did not measure it); the shape's cost from result.shape (the run's shape_metrics.h figures:
-//   volume, creases) and surface_distance.h (the Hausdorff distance of the slimming); the budget
-//   as given and as a length. Cost: one distance pass over the surfaces.
+//   volume, creases), proportions.h (extents, height, folds, the affine map's departure from a
+//   rigid motion) and surface_distance.h (the Hausdorff distance of the slimming); the budget as
+//   given and as a length. Cost: one distance pass over the surfaces, one pass over the faces.
 #pragma once
 
 #include <string>
@@ -35,8 +36,15 @@ struct SlimmingFigures {
   double risky_area_before_mm2 = 0.0, risky_area_after_mm2 = 0.0;
   double volume_before_mm3 = 0.0, volume_after_mm3 = 0.0, volume_change_pct = 0.0;
   double crease_share_pct = 0.0, crease_p99_deg = 0.0;
+  // Proportions (proportions.h), result against the surface the run started from: each
+  // bounding-box extent's change and the height's (along the print direction), %; how far the
+  // best-fit affine map departs from a rigid motion, %; the faces folded over.
+  double extent_change_x_pct = 0.0, extent_change_y_pct = 0.0, extent_change_z_pct = 0.0;
+  double height_change_pct = 0.0, affine_departure_pct = 0.0;
+  long folded_faces = 0;
   double hausdorff_mm = 0.0, hausdorff_pct = 0.0;
   double max_displacement_mm = 0.0, mean_displacement_mm = 0.0;
+  double mean_displacement_pct = 0.0;  // of the reference diagonal
   double budget_mm = 0.0, budget_pct = 0.0;  // 0: no budget
   long open_edges = 0;  // edges of the input used by one face: the borders of its holes
   int iterations = 0;

@@ -98,6 +98,7 @@ struct SlimmingResult {
   long open_edges = 0;                // edges of the input used by one face: the borders of holes,
                                       // which slicers close or drop slice by slice (as the model does)
   Eigen::VectorXd displacement;       // #V, mm
+  Eigen::Vector3d print_direction = Eigen::Vector3d::UnitZ();  // the run's, unit, in the result's frame
   // What the shape paid, the result against the input (shape_metrics.h's shape_change: the signed
   // enclosed volumes in mm³ and their change, the crease share, its 99th percentile), measured
   // with the run's own crease meter.
