@@ -13,7 +13,8 @@
 // Why: the faces of a subdivided triangle, the pieces of a flat face, a rigid feature on a CAD
 // part give thousands of normals that differ in their last bits; for the minimal rotation they
 // are one constraint (min_rotation.h), and thousands of them cost O(n²).
-// Cost: O(n log n) (a sort by x, then a window of width 2 × tolerance around each column).
+// Cost: O(n) expected: the kept columns in a grid of cells as wide as the tolerance, each column
+// compared with the kept ones of its own and the 26 neighbouring cells (a plain pass below 32).
 #pragma once
 
 #include <vector>

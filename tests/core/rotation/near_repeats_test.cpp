@@ -51,6 +51,20 @@ TEST(NearRepeats, KeepsWhatAnAllPairsSearchKeeps) {
 // A subdivided flat face gives hundreds of normals that differ only in their last bits: closer
 // than the feasibility tolerance, they are one constraint, and the answer is that of the distinct
 // normals alone, bit for bit (the first of each group is kept).
+// The faces of a large flat feature: thousands of copies of a few normals that share their x
+// (every one 0), the copies of one normal differing in their last bits. The same kept columns as
+// the all-pairs search, whatever the tolerance.
+TEST(NearRepeats, ThousandsOfCopiesSharingACoordinateKeepWhatAllPairsKeeps) {
+  const std::array<Eigen::Vector3d, 4> normals{Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0, -1, 0),
+                                               Eigen::Vector3d(0, 0.6, -0.8)};
+  Eigen::Matrix3Xd u(3, 20000);
+  for (Eigen::Index j = 0; j < u.cols(); ++j) {
+    u.col(j) = normals[static_cast<size_t>(j % 4)];
+    u(1, j) += (j % 7) * 1e-16;
+  }
+  for (double tol : {0.0, 1e-6, 0.5}) EXPECT_EQ(near_repeats(u, tol), all_pairs(u, tol)) << tol;
+}
+
 TEST(NearRepeats, NormalsWithinTheToleranceAreOneMinimalRotationConstraint) {
   std::mt19937 rng(7);
   std::normal_distribution<double> jitter(0.0, 1e-13);
