@@ -1,5 +1,6 @@
 // eval/studies/corpus.sh end to end on this machine: the packages fetched and unpacked, the models
-// converted and turned into their print pose, every one with the faces docs/corpus.md lists. The
+// converted and turned into their print pose, every one with the faces docs/corpus.md lists and in
+// one of the two halves (tune, check), each half with organic and CAD models. The
 // corpus is what the frontier and the support model's validation are measured on; a reader change
 // once made it stop at the spider (its slivers), unseen, because nothing built it.
 #include <gtest/gtest.h>
@@ -7,7 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "core/orientation/orientation.h"
 #include "core/support_model/support_model.h"
@@ -37,24 +41,42 @@ TEST(Corpus, EveryModelArrivesInItsPrintPoseWithItsFaces) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   // docs/corpus.md's table: name -> faces.
   const std::map<std::string, long> expected = {
-      {"bunny", 3674},          {"bunny_70k", 69666},     {"horse", 7172},           {"knight", 7876},
-      {"suzanne", 3936},        {"wuson", 3732},          {"duck", 4212},            {"spider", 1312},
-      {"scad_example001", 1264}, {"scad_example004", 880}, {"scad_example017", 1240}, {"netgen_hinge", 1212},
+      // The real models the optimizer was tuned on.
+      {"bunny", 3674}, {"bunny_70k", 69666}, {"horse", 7172}, {"knight", 7876}, {"suzanne", 3936}, {"wuson", 3732},
+      {"duck", 4212}, {"spider", 1312}, {"scad_example001", 1264}, {"scad_example004", 880}, {"scad_example017", 1240},
+      {"netgen_hinge", 1212},
+      // The other real models: organic, then CAD.
+      {"ant", 912}, {"apple", 1704}, {"asteroid", 48000}, {"cat", 14348}, {"chess_bishop", 3874}, {"chess_king", 10688},
+      {"chess_pawn", 3024}, {"chess_queen", 10320}, {"chess_rook", 3056}, {"dinosaur", 6656}, {"dwarf", 1896},
+      {"faerie", 654}, {"human", 8560}, {"md2_knight", 634}, {"md2_ogro", 670}, {"md2_rat", 666}, {"md2_rhino", 730},
+      {"mrfixit", 2988}, {"rabbit", 1252}, {"sydney", 679},
+      {"gear", 2880}, {"heartgears", 30636}, {"kr5_base", 996}, {"kr5_elbow", 964}, {"lever", 774}, {"mug", 24544},
+      {"nut", 1046}, {"occt_bearing", 24680}, {"occt_gearbox", 26966}, {"occt_motor", 13506}, {"scad_example005", 1042},
+      {"scad_example016", 556}, {"scad_example020", 8490},
+      // The creatures.
       {"creature_quadruped", 17316}, {"creature_long_neck", 21056}, {"creature_upright", 15128}};
   std::ifstream manifest(out / "manifest.tsv");
   ASSERT_TRUE(manifest) << "no manifest.tsv";
   std::string line;
-  std::getline(manifest, line);  // the header
+  std::getline(manifest, line);  // the header; the half is the last column
+  EXPECT_EQ(line.substr(line.rfind('\t') + 1), "half") << line;
   std::map<std::string, long> faces;
+  std::map<std::string, std::set<std::string>> kinds;  // half -> the kinds of its models
   while (std::getline(manifest, line)) {
-    std::istringstream cells(line);
-    std::string name, kind, count;
-    std::getline(cells, name, '\t');
-    std::getline(cells, kind, '\t');
-    std::getline(cells, count, '\t');
-    faces[name] = std::stol(count);
+    std::istringstream row(line);
+    std::vector<std::string> cells;
+    for (std::string cell; std::getline(row, cell, '\t');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 11u) << line;
+    const std::string &name = cells[0], &kind = cells[1], &half = cells[10];
+    faces[name] = std::stol(cells[2]);
+    EXPECT_TRUE(half == "tune" || half == "check") << name << ": half '" << half << "'";
+    kinds[half].insert(kind);
   }
   EXPECT_EQ(faces, expected);
+  // Each half holds organic and CAD models: what was tuned on one half is checked on the same kinds.
+  for (const char* half : {"tune", "check"})
+    for (const char* kind : {"organic", "cad"})
+      EXPECT_EQ(kinds[half].count(kind), 1u) << "no " << kind << " model in the " << half << " half";
   for (const auto& [name, count] : expected) {
     SCOPED_TRACE(name);
     const Surface s = io::load_surface((out / (name + ".ply")).string());
