@@ -40,7 +40,12 @@ options:
   --max-k K                largest number of K-means proxies per tet                 [8]
   --max-creases PCT        never return a result whose creases (edges whose dihedral angle
                            changed by more than 10 deg) exceed PCT % of the edge length;
-                           0: no limit; the paper's method has none                  [2.5]
+                           0: no limit; the paper's method has none                  [2]
+  --max-displacement PCT   never return a result whose surface moved further than PCT % of the
+                           bbox diagonal on average; 0: no limit                     [1.5]
+  --allow-stretch          let the whole part move: no anchoring of what lies away from the
+                           overhangs and no hold on its proportions (it may come back taller
+                           and thinner; off by default)
   --min-saving PCT         return the input unchanged unless the support model finds a result
                            needing at least PCT % less support, over its grid phases and at
                            the slicer's own; 0: any saving; the paper's method chooses by
@@ -75,8 +80,8 @@ int integer(const std::string& flag, const std::string& text) {
   return static_cast<int>(v);
 }
 
-// The crease limit as the CLI and the dialog give it: a percentage, 0 for no limit.
-std::optional<double> crease_limit(double pct) { return pct == 0.0 ? std::nullopt : std::optional<double>(pct); }
+// A limit as the CLI and the dialog give it (creases, displacement): a percentage, 0 for no limit.
+std::optional<double> limit_pct(double pct) { return pct == 0.0 ? std::nullopt : std::optional<double>(pct); }
 
 Eigen::Vector3d vector3(const std::string& flag, const std::string& text) {
   std::stringstream ss(text);
@@ -112,7 +117,7 @@ std::vector<bool> read_face_ids(const std::string& path, long long faces) {
 CliOptions parse_arguments(const std::vector<std::string>& args) {
   CliOptions c;
   SlimmingOptions& o = c.slimming;
-  bool dir_given = false, creases_given = false, saving_given = false;
+  bool dir_given = false, creases_given = false, saving_given = false, shape_given = false;
   auto value = [&](size_t& i) -> const std::string& {
     if (i + 1 >= args.size()) die(args[i] + " needs a value");
     return args[++i];
@@ -141,8 +146,11 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
     } else if (a == "--iterations") o.steps.max_iterations = integer(a, value(i));
     else if (a == "--max-deviation") o.budget = DeviationBudget::from_percent(number(a, value(i)));
     else if (a == "--max-k") o.steps.max_k = integer(a, value(i));
-    else if (a == "--max-creases") o.result.max_crease_share_pct = crease_limit(number(a, value(i))), creases_given = true;
+    else if (a == "--max-creases") o.result.max_crease_share_pct = limit_pct(number(a, value(i))), creases_given = true;
     else if (a == "--min-saving") o.result.min_support_saving_pct = number(a, value(i)), saving_given = true;
+    else if (a == "--max-displacement")
+      o.result.max_mean_displacement_pct = limit_pct(number(a, value(i))), shape_given = true;
+    else if (a == "--allow-stretch") allow_stretch(o), shape_given = true;
     else if (a == "--features") c.features_file = value(i);
     else if (a == "--features-from-mesh") c.features_from_mesh = true;
     else if (a == "--orient") c.orient = true;
@@ -168,6 +176,8 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
     die("--max-creases limits the coherent method; the paper's method has no crease limit");
   if (saving_given && o.method == SlimmingMethod::Paper)
     die("--min-saving sets the coherent method's least saving; the paper's method has none");
+  if (shape_given && o.method == SlimmingMethod::Paper)
+    die("--max-displacement and --allow-stretch shape the coherent method; the paper's method lets the part stretch");
 
   return c;
 }

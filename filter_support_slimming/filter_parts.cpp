@@ -43,6 +43,7 @@ slim::SlimmingOptions slimming_options(const RichParameterList& par) {
   o.steps.max_iterations = par.getInt("maxIterations");
   o.budget = slim::DeviationBudget::from_percent(par.getFloat("maxDeviation"));
   o.steps.max_k = par.getInt("maxK");
+  if (par.getBool("allowStretch")) slim::allow_stretch(o);
   return o;
 }
 

@@ -49,6 +49,11 @@ void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par)
                          "The farthest any vertex may move, as a percentage of the bounding box diagonal. It is a "
                          "constraint, not a stopping rule: the part of a step that would take a vertex further is "
                          "rolled back, and the run goes on. 0: no budget."));
+  par.addParam(RichBool("allowStretch", !defaults.hold_proportions, "Allow stretch",
+                        "Off (default): the part keeps its size and proportions, and what lies away from the "
+                        "overhangs that need support stays where it was. On: the whole part may move, and it may "
+                        "come back taller and thinner (which buys little support). The Paper method always lets "
+                        "it stretch."));
   par.addParam(RichInt("maxK", defaults.steps.max_k, "Max proxies per tetrahedron",
                        "When no single rotation can make every face in a tetrahedron self-supporting, its faces "
                        "are clustered into at most this many proxy normals (area-weighted K-means)."));

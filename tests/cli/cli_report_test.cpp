@@ -196,6 +196,24 @@ TEST(CliReport, TheResolutionLadderIsSaidAndOneResolutionTurnsItOff) {
   fs::remove_all(dir);
 }
 
+// By default the bunny keeps its proportions (the report's affine map within 1% of a rigid
+// motion, the top risen at most 1% of the height); --allow-stretch lets the whole part move, and
+// the report says it departs further from a rigid motion.
+TEST(CliReport, AllowStretchLetsThePartStretch) {
+  const fs::path dir = test::scratch();
+  const std::string bunny = "'" + test::sample_bunny_path() + "' -o '" + (dir / "out.ply").string() + "' --quiet --report '";
+  std::string text;
+  ASSERT_EQ(test::run_cli(bunny + (dir / "held.json").string() + "'").exit_code, 0);
+  ASSERT_EQ(test::run_cli(bunny + (dir / "free.json").string() + "' --allow-stretch").exit_code, 0);
+  const std::map<std::string, double> held = read_numbers(dir / "held.json", text), free = read_numbers(dir / "free.json", text);
+  EXPECT_LE(held.at("affine_departure_pct"), 1.0);
+  EXPECT_LE(held.at("height_change_pct"), 1.0 + 1e-9);
+  EXPECT_LE(held.at("mean_displacement_pct"), 1.5);
+  EXPECT_EQ(held.at("folded_faces"), 0);
+  EXPECT_GT(free.at("affine_departure_pct"), held.at("affine_departure_pct") + 0.5);
+  fs::remove_all(dir);
+}
+
 TEST(CliReport, AnUnwritableReportExitsWithOneLine) {
   const fs::path dir = test::scratch();
   const test::CliRun r = test::run_cli("'" + test::sample_bunny_path() + "' -o '" + (dir / "b.ply").string() +

@@ -63,6 +63,7 @@ QString slimming_script(const BadInput& c) {
   s = set_value(s, "maxIterations", QString::number(o.steps.max_iterations));
   s = set_value(s, "maxDeviation", number(o.budget.share_percent().value_or(0.0)));
   s = set_value(s, "maxK", QString::number(o.steps.max_k));
+  s = set_value(s, "allowStretch", o.hold_proportions ? "false" : "true");
   return s;
 }
 

@@ -70,6 +70,7 @@ RichParameterList slimming_params(PluginHarness& h, MeshDocument& md, const BadI
   p.setValue("maxIterations", IntValue(o.steps.max_iterations));
   p.setValue("maxDeviation", FloatValue(float(o.budget.share_percent().value_or(0.0))));
   p.setValue("maxK", IntValue(o.steps.max_k));
+  p.setValue("allowStretch", BoolValue(!o.hold_proportions));
   p.setValue("preserveSelection", BoolValue(c.preserve_selection));
   return p;
 }

@@ -140,6 +140,19 @@ class PyMeshLabPluginTest(unittest.TestCase):
         sigma = np.linalg.svd(fit[:3, :], compute_uv=False)
         self.assertAlmostEqual(out["affine_departure_pct"], 100.0 * np.abs(sigma - 1.0).max(), delta=1e-3)
         self.assertGreaterEqual(W[:, 2].min(), self.V[:, 2].min() - 1e-9)  # nothing below the plate
+        # By default the part keeps its proportions and moves little on average.
+        self.assertLessEqual(out["affine_departure_pct"], 1.0)
+        self.assertLessEqual(out["mean_displacement_pct"], 1.5)
+        self.assertEqual(out["folded_faces"], 0)
+
+    def test_allow_stretch_lets_the_whole_part_move(self):
+        held = self.ms.apply_filter(NAMES["Support Slimming"], resolution=12, maxdeviation=5.0)
+        self.ms.set_current_mesh(self.input_id)
+        free = self.ms.apply_filter(NAMES["Support Slimming"], resolution=12, maxdeviation=5.0, allowstretch=True)
+        self.assertEqual(self.ms.mesh_number(), 3)
+        self.assert_input_untouched()
+        self.assertLessEqual(held["affine_departure_pct"], 1.0)
+        self.assertGreater(free["affine_departure_pct"], held["affine_departure_pct"] + 0.5)
 
     def test_print_orientation_turns_the_part_rigidly(self):
         alpha = 40.0

@@ -1,6 +1,6 @@
 // Which iterate Support Slimming returns (slimming.h).
 //
-//   IterateChoice choice(input_stats, judge, max_crease_share_pct, min_saving_pct);
+//   IterateChoice choice(input_stats, judge, max_crease_share_pct, min_saving_pct, max_mean_displacement_mm);
 //   if (choice.offer(stats)) { ...keep this iterate... }
 //
 // The iterate that needs the least support, by the judge: the support model's estimate of what
@@ -12,6 +12,8 @@
 // overhangs left move higher and need more support; and the slicer closes small gaps in an
 // overhang's footprint, so cutting risky area can save nothing: the support decides.)
 // An iterate whose crease share exceeds max_crease_share_pct (when set) never qualifies either,
+// nor one whose surface vertices moved further than max_mean_displacement_mm on average (when set:
+// the deformation spreads over the part while the last steps buy little support),
 // and by the support model neither does one that saves less than min_saving_pct (%) of the
 // input's support: a saving within the model's error is not worth a change of shape. That saving
 // must hold both over the grid phases (the mean, which decides between iterates) and at the
@@ -37,8 +39,9 @@ namespace slim {
 class IterateChoice {
  public:
   IterateChoice(const IterationStats& input, ResultJudge judge, std::optional<double> max_crease_share_pct = std::nullopt,
-                double min_saving_pct = 0.0)
-      : by_model_(judge == ResultJudge::SupportModel), max_crease_(max_crease_share_pct), input_risky_(input.risky_area),
+                double min_saving_pct = 0.0, std::optional<double> max_mean_displacement_mm = std::nullopt)
+      : by_model_(judge == ResultJudge::SupportModel), max_crease_(max_crease_share_pct),
+        max_displacement_(max_mean_displacement_mm), input_risky_(input.risky_area),
         input_support_(support(input)), input_slicer_phase_(by_model_ ? input.support_slicer_phase.value_or(0.0) : 0.0),
         best_support_(input_support_), best_risky_(input.risky_area) {
     // By the model an iterate must beat the input by the least saving: it starts as the bar.
@@ -51,9 +54,11 @@ class IterateChoice {
   bool offer(const IterationStats& s) {
     // An iterate the model could not measure never qualifies.
     const bool creased = max_crease_ && s.crease_share_pct && *s.crease_share_pct > *max_crease_;
-    const bool qualifies = s.risky_area <= input_risky_ && !(by_model_ && !s.support_estimate) && !creased;
+    const bool displaced = max_displacement_ && s.mean_displacement > *max_displacement_;
+    const bool qualifies = s.risky_area <= input_risky_ && !(by_model_ && !s.support_estimate) && !creased && !displaced;
     const double need = support(s);
     if (creased && need < best_support_) ++passed_over_;
+    if (displaced && need < best_support_) ++displaced_over_;
     if (qualifies) best_unsaved_ = std::max(best_unsaved_, saving_pct(s));
     const bool saves_at_phase = !s.support_slicer_phase || *s.support_slicer_phase <= slicer_phase_bar_;
     if (!qualifies || !saves_at_phase || !(need < best_support_ || (need == best_support_ && s.risky_area <= best_risky_)))
@@ -69,6 +74,8 @@ class IterateChoice {
 
   // Iterates that needed less support than the best so far but creased past the limit.
   int passed_over() const { return passed_over_; }
+  // Iterates that needed less support than the best so far but moved the surface too far.
+  int displaced_over() const { return displaced_over_; }
 
   // The largest saving (% of the input's support; by the model the smaller of the phase mean's
   // and the slicer phase's) of an iterate that qualified but for the least saving; 0 when none
@@ -88,8 +95,8 @@ class IterateChoice {
   }
 
   bool by_model_;
-  std::optional<double> max_crease_;
-  int passed_over_ = 0;
+  std::optional<double> max_crease_, max_displacement_;
+  int passed_over_ = 0, displaced_over_ = 0;
   double input_risky_, input_support_, input_slicer_phase_, best_support_, best_risky_;
   double best_unsaved_ = 0.0;
   double slicer_phase_bar_ = std::numeric_limits<double>::infinity();  // mm³ at the slicer's phase

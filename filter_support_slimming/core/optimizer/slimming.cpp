@@ -86,6 +86,11 @@ std::string choice_note(const IterateChoice& choice, const ResultChoiceOptions& 
     std::snprintf(note, sizeof note, "; %d iterate%s that needed less support creased more than the limit (%.3g%% of the edge length)",
                   choice.passed_over(), choice.passed_over() == 1 ? "" : "s", c.max_crease_share_pct.value_or(0.0));
   std::string why = note;
+  if (choice.displaced_over() > 0) {
+    std::snprintf(note, sizeof note, "; %d iterate%s that needed less support moved the surface more than the limit (%.3g%% of the bbox diagonal on average)",
+                  choice.displaced_over(), choice.displaced_over() == 1 ? "" : "s", c.max_mean_displacement_pct.value_or(0.0));
+    why += note;
+  }
   if (r.iterations > 0) return why;
   const bool by_model = r.judged_by == ResultJudge::SupportModel;
   // Iterates the crease limit turned away did need less support: what follows is of the others.
@@ -105,9 +110,11 @@ std::string choice_note(const IterateChoice& choice, const ResultChoiceOptions& 
 // model when it judges (r.judged_by), else null. The crease meter is the run's: after the
 // iterations it measures the result too (slim_at_resolution).
 std::string iterate(SupportSlimmer& slimmer, const CreaseMeter& creases, SupportModel* model, const SlimmingOptions& o,
-                    const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
+                    double diagonal_mm, const std::function<void(double, const std::string&)>& report, SlimmingResult& r) {
   const ResultChoiceOptions& c = o.result;
-  IterateChoice choice(r.history.front(), r.judged_by, c.max_crease_share_pct, c.min_support_saving_pct);
+  std::optional<double> max_displacement_mm;
+  if (c.max_mean_displacement_pct) max_displacement_mm = *c.max_mean_displacement_pct / 100.0 * diagonal_mm;
+  IterateChoice choice(r.history.front(), r.judged_by, c.max_crease_share_pct, c.min_support_saving_pct, max_displacement_mm);
   const int max_iterations = o.steps.max_iterations;
   for (int it = 1; it <= max_iterations; ++it) {
     r.iterations_run = it;
@@ -221,7 +228,7 @@ SlimmingResult slim_at_resolution(const CheckedSurface& checked, const SlimmingO
      // is measured.
     SupportSlimmer slimmer(checked, std::move(domain), r.before, o, in.rule, report);
     r.solver_backend = slimmer.backend_name();
-    why = iterate(slimmer, creases, in.judging_model(), o, report, r);
+    why = iterate(slimmer, creases, in.judging_model(), o, in.rule.diagonal_mm, report, r);
     const SlimmingStageSeconds& times = slimmer.stage_seconds();
     r.stage_seconds.factorization = times.factorization;
     r.stage_seconds.local = times.local;

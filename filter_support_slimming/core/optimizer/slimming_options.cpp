@@ -30,11 +30,20 @@ void validate_steps(const StepOptions& s) {
 void validate_choice(const ResultChoiceOptions& c, const LadderOptions& ladder) {
   if (c.max_crease_share_pct && !(*c.max_crease_share_pct > 0.0 && *c.max_crease_share_pct <= 100.0))
     throw std::invalid_argument("the crease share limit must be in (0, 100] %");
+  if (c.max_mean_displacement_pct && !(*c.max_mean_displacement_pct > 0.0 && *c.max_mean_displacement_pct <= 100.0))
+    throw std::invalid_argument("the mean displacement limit must be in (0, 100] % of the bbox diagonal");
   if (!(c.min_support_saving_pct >= 0.0 && c.min_support_saving_pct < 100.0))
     throw std::invalid_argument("the least support saving must be in [0, 100) % (0: any saving)");
   for (double multiple : ladder.multiples)
     if (!(multiple > 1.0 && multiple <= 4.0)) throw std::invalid_argument("the resolution ladder's multiples must be in (1, 4]");
   if (ladder.max_faces < 0) throw std::invalid_argument("the resolution ladder's face cap must be 0 or more");
+}
+
+void validate_region(const RegionOptions& r) {
+  if (!(r.free_radius_share >= 0.0 && r.free_radius_share <= 10.0) || !(r.ramp_share >= 0.0 && r.ramp_share <= 10.0))
+    throw std::invalid_argument("the free region's radius and ramp must be in [0, 10] times the bbox diagonal");
+  if (!(r.stiffness >= 0.0 && std::isfinite(r.stiffness)))
+    throw std::invalid_argument("the anchoring stiffness must be finite and 0 or more (0: the part may stretch)");
 }
 
 }  // namespace
@@ -55,12 +64,21 @@ SlimmingOptions method_applied(const SlimmingOptions& options) {
     o.coherence = CoherenceOptions::none();
     o.result.judge = ResultJudge::ShadowVolume;
     o.result.max_crease_share_pct.reset();
+    o.result.max_mean_displacement_pct.reset();
     o.result.min_support_saving_pct = 0.0;
     o.ladder.multiples.clear();
     o.keep_volume = false;
+    allow_stretch(o);
     o.guards.local_inversion_guard = false;
+    o.guards.surface_guard = false;
   }
   return o;
+}
+
+void allow_stretch(SlimmingOptions& o) {
+  o.region = RegionOptions::none();
+  o.hold_proportions = false;
+  o.guards.max_rise_pct.reset();
 }
 
 void validate_slimming_options(const SlimmingOptions& o, long faces) {
@@ -71,7 +89,10 @@ void validate_slimming_options(const SlimmingOptions& o, long faces) {
   if (!o.rigid_features.empty() && o.rigid_features.size() != static_cast<size_t>(faces))
     throw std::invalid_argument("the rigid-feature marks must have one entry per face");
   validate_coherence(o.coherence);
+  validate_region(o.region);
   validate_choice(o.result, o.ladder);
+  if (o.guards.max_rise_pct && !(*o.guards.max_rise_pct >= 0.0 && *o.guards.max_rise_pct <= 100.0))
+    throw std::invalid_argument("the top's allowed rise must be in [0, 100] % of the part's height");
   if (o.guards.max_memory_bytes && !(*o.guards.max_memory_bytes > 0.0))
     throw std::invalid_argument("the memory budget must be more than 0 bytes");
 }

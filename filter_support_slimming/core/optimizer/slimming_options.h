@@ -114,7 +114,11 @@ struct ResultChoiceOptions {
   // An iterate whose crease share against the input (% of the interior edge length whose dihedral
   // angle changed by more than 10 degrees, shape_metrics.h) exceeds this is never returned; none:
   // no limit. The share grows with the iterations while the last steps buy little support.
-  std::optional<double> max_crease_share_pct = 2.5;  // (0, 100]
+  std::optional<double> max_crease_share_pct = 2.0;  // (0, 100]
+  // An iterate whose surface vertices moved further than this on average (% of the input's
+  // bounding-box diagonal) is never returned; none: no limit. The shape should change where the
+  // support is, not everywhere.
+  std::optional<double> max_mean_displacement_pct = 1.5;  // (0, 100]
   // The least saving worth a change of shape: when no iterate needs at least this share (%) less
   // support than the input by the support model, both over its grid phases and at the slicer's own
   // phase for the part as placed, the input is returned unchanged; 0: any saving. A smaller
@@ -131,11 +135,33 @@ struct LadderOptions {
   long max_faces = 300000;                           // >= 0
 };
 
+// Where the part may move (support_region.h): the global step anchors every domain vertex farther
+// than free_radius_share of the bounding-box diagonal from the faces that need support to where
+// it was, fully beyond a further ramp_share. So the underside is reshaped where the support is and
+// the rest of the part keeps its place, size and proportions. stiffness 0 turns the anchors off
+// (the part may then stretch: taller and thinner, which buys little support).
+struct RegionOptions {
+  double free_radius_share = 0.10;  // [0, 10]: share of the diagonal free of springs
+  double ramp_share = 0.10;         // [0, 10]: share of the diagonal over which they grow
+  double stiffness = 0.1;           // >= 0, unitless (the springs per mm^3 of domain)
+  static RegionOptions none() {
+    RegionOptions o;
+    o.stiffness = 0.0;
+    return o;
+  }
+};
+
 // What protects the run and the machine.
 struct GuardOptions {
   // The inversion guard (step_guards.h): true rolls the vertices of the tets a step would invert
   // back and goes on; false cuts the whole step back to the largest valid fraction and stops.
   bool local_inversion_guard = true;
+  // The surface guards (surface_guards.h): true rolls back the vertices of the tets under faces a
+  // step would fold over (turn past 90 degrees) or lift above the top's allowance below.
+  bool surface_guard = true;
+  // The surface's top may rise at most this share (%) of the part's height along the print
+  // direction (surface_guards.h); none: no limit. A part that grows taller may no longer fit.
+  std::optional<double> max_rise_pct = 1.0;  // [0, 100]
   // Memory budget (bytes); none: no budget. After the domain is built, a run whose estimated peak
   // (per-tet state and the Cholesky factor) exceeds it is refused with the largest voxel
   // resolution that fits, before anything big is allocated. Before that, the voxel domain's own
@@ -159,6 +185,11 @@ struct SlimmingOptions {
   // Keep the input's enclosed volume through every global step (volume_keeping.h): what the
   // overhangs bent up would carve out of the part goes back where it is softest.
   bool keep_volume = true;
+  RegionOptions region;              // read by the Coherent method only
+  // Hold the part's proportions (rigid_proportions.h): every global step keeps the best-fit affine
+  // map from the input to the result free of stretch and squash, so the part does not come back
+  // taller and thinner. false lets it stretch (a stretch buys little support).
+  bool hold_proportions = true;      // read by the Coherent method only
   GuardOptions guards;
   // Feature preservation (§IV-B). Per input face: true = part of a rigid feature. Each connected
   // component of the marked faces is one feature that moves as a single rigid body. Empty: none.
@@ -174,9 +205,15 @@ struct SlimmingOptions {
 
 // The options a run reads, the method applied: for Coherent, the margin 10 and step cap 2 where
 // not set; for Paper, every coherent part off (CoherenceOptions::none()), the shadow volume as the
-// judge with no crease limit and no least saving, no ladder, no volume keeping, the whole-step
-// inversion guard, and the margin 1 and step cap 10 where not set. Every other field as given.
+// judge with no crease, displacement or least-saving limit, no ladder, no volume keeping, the part
+// free to stretch (allow_stretch), the whole-step inversion guard and no surface guard, and the
+// margin 1 and step cap 10 where not set. Every other field as given.
 SlimmingOptions method_applied(const SlimmingOptions& options);
+
+// The part may move as a whole (the CLI's --allow-stretch, the filter's "Allow stretch"): no
+// springs to what the support does not need (RegionOptions::none()), no hold on its proportions
+// and no limit on its top's rise. The result limits (creases, mean displacement) stay as set.
+void allow_stretch(SlimmingOptions& options);
 
 // Throws std::invalid_argument, in words a user can act on, for a value out of its range
 // (`faces`: the input's face count, for the rigid-feature marks).

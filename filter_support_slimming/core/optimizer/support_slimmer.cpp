@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 #include "core/optimizer/coherence.h"
+#include "core/optimizer/surface_guards.h"
+#include "core/optimizer/rigid_proportions.h"
 #include "core/optimizer/step_guards.h"
+#include "core/optimizer/support_region.h"
 
 namespace slim {
 
@@ -103,7 +107,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   local_.skip = features_->tet_flags();
 
   report(0.05, "factoring the global step");
-  factor_global_step(before);
+  factor_global_step(before, rule.diagonal_mm);
   state_ = local_.make_state();
   V_ = mesh.V;
   for (const auto& tet_pieces : local_.pieces)
@@ -111,11 +115,13 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   plate_ = (mesh.V * d).minCoeff();
   volume_target_ = signed_volume(input_);
   if (o.keep_volume) volume_ = std::make_unique<VolumeKeeping>(domain_.embedding, input_.F, mesh.V.rows());
+  if (o.guards.surface_guard)
+    surface_guards_ = std::make_unique<SurfaceGuards>(input_, domain_.embedding, d, o.guards.max_rise_pct);
 }
 
 // Weights: the rest volumes (the paper), with the coherent factors and the features' weight;
 // the plate vertices held; a part that does not touch the plate stays where it is.
-void SupportSlimmer::factor_global_step(const OverhangReport& before) {
+void SupportSlimmer::factor_global_step(const OverhangReport& before, double diagonal_mm) {
   const TetMesh& mesh = domain_.mesh;
   const int nt = static_cast<int>(mesh.T.rows());
   weights_.resize(nt);
@@ -134,7 +140,12 @@ void SupportSlimmer::factor_global_step(const OverhangReport& before) {
   ao.anchor_floating_components = true;
   {
     ScopedSeconds timer(times_.factorization);
-    arap_ = std::make_unique<ArapSolver>(mesh, weights_, pinned, ao);
+    const Eigen::VectorXd anchors = region_anchors(input_, before.risky, mesh, diagonal_mm, options_.region);
+    arap_ = std::make_unique<ArapSolver>(mesh, weights_, pinned, anchors, ao);
+    if (options_.hold_proportions) {
+      const std::vector<Points> C = stretch_constraints(input_, domain_.embedding, mesh.V.rows());
+      arap_->set_constraints(C, constraint_values(C, mesh.V));
+    }
   }
   if (options_.coherence.smoothing > 0.0 || options_.coherence.propagation > 0.0) {
     std::vector<bool> holds_faces(static_cast<size_t>(nt));
@@ -173,6 +184,11 @@ IterationStats SupportSlimmer::step() {
   return stats;
 }
 
+// After the plate and the budget: the vertices of the tets a step would invert, and with the
+// surface guards (surface_guards.h) those under folded faces or above the top's allowance, go
+// back, in rounds (step_guards.h). Should the rounds run out, or for the paper's method, the step
+// is cut back to the largest fraction that inverts nothing, and a surface still at fault takes
+// the whole step back (the current iterate has no fault).
 bool SupportSlimmer::guard(Points& proposed, int& held_back, int& features_held, bool& inversion_cut) {
   const Tets& T = domain_.mesh.T;
   bool guarded = keep_above_plate(proposed, measure_.d, plate_);
@@ -181,14 +197,28 @@ bool SupportSlimmer::guard(Points& proposed, int& held_back, int& features_held,
     guarded = guarded || budget.moved();
     features_held = budget.groups_held;
   }
-  const std::vector<int> probe = inverted_tets(proposed, T);
-  if (probe.empty()) return guarded;
+  auto surface_faults = [&](const Points& P) { return surface_guards_ ? surface_guards_->faulty_tets(P) : std::vector<int>(); };
+  auto faulty = [&](const Points& P) {
+    const std::vector<int> a = inverted_tets(P, T), b = surface_faults(P);
+    std::vector<int> both;
+    std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(both));
+    return both;
+  };
+  std::vector<int> now = faulty(proposed);
+  if (now.empty()) return guarded;
   if (options_.guards.local_inversion_guard &&
-      roll_back_inverting(V_, proposed, T, features_->vertex_feature(), probe, held_back))
+      roll_back_until(V_, proposed, T, features_->vertex_feature(), std::move(now), faulty, held_back))
     return true;
-  cut_back_to_valid(V_, proposed, T, probe);
-  inversion_cut = true;
-  guard_stop_ = "a tetrahedron would have inverted (step cut back)";
+  const std::vector<int> probe = inverted_tets(proposed, T);
+  if (!probe.empty()) {
+    cut_back_to_valid(V_, proposed, T, probe);
+    inversion_cut = true;
+    guard_stop_ = "a tetrahedron would have inverted (step cut back)";
+  }
+  if (!surface_faults(proposed).empty()) {
+    proposed = V_;
+    held_back = static_cast<int>(V_.rows());
+  }
   return true;
 }
 

@@ -43,6 +43,7 @@
 #include "core/optimizer/rigid_features.h"
 #include "core/optimizer/slimming_options.h"
 #include "core/optimizer/slimming_result.h"
+#include "core/optimizer/surface_guards.h"
 #include "core/optimizer/volume_keeping.h"
 #include "core/print/overhang.h"
 #include "core/solver/arap.h"
@@ -79,7 +80,7 @@ class SupportSlimmer {
   std::string backend_name() const { return arap_->backend_name(); }
 
  private:
-  void factor_global_step(const OverhangReport& before);
+  void factor_global_step(const OverhangReport& before, double diagonal_mm);
   // The guards on the global step's solution; true when they moved it.
   bool guard(Points& proposed, int& held_back, int& features_held, bool& inversion_cut);
   IterationStats measure(const Points& solved, const Points& accepted, bool guarded, bool inversion_cut, int held_back);
@@ -96,6 +97,7 @@ class SupportSlimmer {
   Eigen::VectorXd weights_;
   std::unique_ptr<ArapSolver> arap_;
   std::unique_ptr<VolumeKeeping> volume_;  // when the coherent options keep the volume
+  std::unique_ptr<SurfaceGuards> surface_guards_;  // none for the paper's method
   std::vector<std::vector<int>> neighbours_;
   Points V_;             // the current domain positions
   Surface current_;      // the current surface: its positions, the input's faces

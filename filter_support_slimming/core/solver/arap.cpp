@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/solver/linear_constraints.h"
 #include "core/solver/sparse_cholesky.h"
 #include "core/utilities/union_find.h"
 
@@ -32,6 +33,8 @@ struct ArapSolver::Impl {
   int nv = 0, nt = 0;
   Tets T;
   Eigen::VectorXd w;                             // #T
+  Eigen::VectorXd anchor;                        // #V springs to the rest positions; empty: none
+  Points anchor_target;                          // #V rest positions, when anchored
   std::vector<Eigen::Matrix<double, 3, 4>> rest;  // per tet [-(e1+e2+e3), e1, e2, e3] at rest
   std::vector<int> free_index;                   // #V: row in the unknowns, -1 when held
   std::vector<int> free_vertices, held_vertices;
@@ -47,15 +50,23 @@ struct ArapSolver::Impl {
   ArapOptions options;
   int factorizations = 0;
   std::unique_ptr<SparseCholesky> cholesky;  // of K_ff; none when every vertex is held
+  // set_constraints(): their free rows, their held rows and their values.
+  std::unique_ptr<LinearConstraints> constraints;
+  std::vector<Points> constraint_held;
+  Eigen::VectorXd constraint_values;
 
   // Everything a constructor does: store and check, split, index, factor once, size the workspace.
-  void setup(const TetMesh& mesh, const Eigen::VectorXd* weights, const std::vector<int>& pinned);
+  void setup(const TetMesh& mesh, const ArapOptions& opts, const Eigen::VectorXd* weights,
+             const std::vector<int>& pinned, const Eigen::VectorXd* anchors);
+  void store_anchors(const TetMesh& mesh, const Eigen::VectorXd& anchors);
   void check_and_store(const TetMesh& mesh, const Eigen::VectorXd* weights);
   void split_vertices(const std::vector<int>& pinned);
   void build_incidence();
   SparseMatrix free_matrix() const;
   void check_L(const std::vector<Eigen::Matrix3d>& L) const;
   Eigen::MatrixXd free_rows(const Points& load) const;  // #free by 3: the load's free rows
+  // The constraints' values for the free rows, given the held vertices' positions.
+  Eigen::VectorXd free_values(const Points& V_held) const;
 };
 
 void ArapSolver::Impl::check_and_store(const TetMesh& mesh, const Eigen::VectorXd* weights) {
@@ -110,6 +121,7 @@ void ArapSolver::Impl::split_vertices(const std::vector<int>& pinned) {
   for (int v = 0; v < nv; ++v) {
     if (!used[static_cast<size_t>(v)]) held[static_cast<size_t>(v)] = 1;
     if (held[static_cast<size_t>(v)]) root_held[static_cast<size_t>(comp.find(v))] = 1;
+    if (anchor.size() && anchor(v) > 0.0) root_held[static_cast<size_t>(comp.find(v))] = 1;
   }
   for (int v = 0; v < nv; ++v) {
     if (comp.find(v) != v || root_held[static_cast<size_t>(v)]) continue;
@@ -171,6 +183,8 @@ SparseMatrix ArapSolver::Impl::free_matrix() const {
       if (a >= 0 && b >= 0) trip.emplace_back(std::max(a, b), std::min(a, b), -w(t));
     }
   }
+  if (anchor.size())
+    for (int f = 0; f < nf; ++f) diag(f) += anchor(free_vertices[static_cast<size_t>(f)]);
   for (int f = 0; f < nf; ++f) trip.emplace_back(f, f, diag(f));
   SparseMatrix K(nf, nf);
   K.setFromTriplets(trip.begin(), trip.end());
@@ -181,8 +195,20 @@ void ArapSolver::Impl::check_L(const std::vector<Eigen::Matrix3d>& L) const {
   if (static_cast<int>(L.size()) != nt) throw std::invalid_argument("ArapSolver: expected one L per tet");
 }
 
-void ArapSolver::Impl::setup(const TetMesh& mesh, const Eigen::VectorXd* weights, const std::vector<int>& pinned) {
+void ArapSolver::Impl::store_anchors(const TetMesh& mesh, const Eigen::VectorXd& anchors) {
+  if (anchors.size() == 0) return;
+  if (anchors.size() != nv) throw std::invalid_argument("ArapSolver: expected one anchor weight per vertex");
+  if (!anchors.allFinite() || (anchors.array() < 0.0).any())
+    throw std::invalid_argument("ArapSolver: anchor weights must be finite and >= 0");
+  anchor = anchors;
+  anchor_target = mesh.V;
+}
+
+void ArapSolver::Impl::setup(const TetMesh& mesh, const ArapOptions& opts, const Eigen::VectorXd* weights,
+                             const std::vector<int>& pinned, const Eigen::VectorXd* anchors) {
+  options = opts;
   check_and_store(mesh, weights);
+  if (anchors) store_anchors(mesh, *anchors);
   split_vertices(pinned);
   build_incidence();
   if (!free_vertices.empty()) {
@@ -197,18 +223,13 @@ void ArapSolver::Impl::setup(const TetMesh& mesh, const Eigen::VectorXd* weights
 }
 
 ArapSolver::ArapSolver(const TetMesh& rest, const std::vector<int>& pinned, const ArapOptions& options)
-    : impl_(std::make_unique<Impl>()) {
-  impl_->options = options;
-  impl_->setup(rest, nullptr, pinned);
-}
-
+    : impl_(std::make_unique<Impl>()) { impl_->setup(rest, options, nullptr, pinned, nullptr); }
 ArapSolver::ArapSolver(const TetMesh& rest, const Eigen::VectorXd& weights, const std::vector<int>& pinned,
                        const ArapOptions& options)
-    : impl_(std::make_unique<Impl>()) {
-  impl_->options = options;
-  impl_->setup(rest, &weights, pinned);
-}
-
+    : impl_(std::make_unique<Impl>()) { impl_->setup(rest, options, &weights, pinned, nullptr); }
+ArapSolver::ArapSolver(const TetMesh& rest, const Eigen::VectorXd& weights, const std::vector<int>& pinned,
+                       const Eigen::VectorXd& anchors, const ArapOptions& options)
+    : impl_(std::make_unique<Impl>()) { impl_->setup(rest, options, &weights, pinned, &anchors); }
 ArapSolver::~ArapSolver() = default;
 ArapSolver::ArapSolver(ArapSolver&&) noexcept = default;
 ArapSolver& ArapSolver::operator=(ArapSolver&&) noexcept = default;
@@ -247,6 +268,10 @@ Eigen::MatrixXd ArapSolver::assemble_rhs(const std::vector<Eigen::Matrix3d>& L, 
         if (m.free_index[static_cast<size_t>(u)] < 0) b += wt * V_held.row(u).transpose();
       }
     }
+    if (m.anchor.size()) {
+      const int v = m.free_vertices[static_cast<size_t>(f)];
+      b += m.anchor(v) * m.anchor_target.row(v).transpose();
+    }
     rhs.row(f) = b.transpose();
   }
   return rhs;
@@ -263,8 +288,33 @@ Eigen::MatrixXd ArapSolver::back_substitute(const Eigen::MatrixXd& rhs) const {
   return x;
 }
 
+void ArapSolver::set_constraints(const std::vector<Points>& C, const Eigen::VectorXd& c) {
+  Impl& m = *impl_;
+  if (c.size() != static_cast<Eigen::Index>(C.size()))
+    throw std::invalid_argument("ArapSolver: expected one value per constraint");
+  std::vector<Eigen::MatrixXd> free;
+  m.constraint_held.clear();
+  for (const Points& Ck : C) {
+    if (Ck.rows() != m.nv || Ck.cols() != 3) throw std::invalid_argument("ArapSolver: a constraint must be #V by 3");
+    free.push_back(m.free_rows(Ck));
+    Points held = Points::Zero(m.nv, 3);
+    for (int v : m.held_vertices) held.row(v) = Ck.row(v);
+    m.constraint_held.push_back(std::move(held));
+  }
+  m.constraint_values = c;
+  m.constraints = std::make_unique<LinearConstraints>(std::move(free), [this](const Eigen::MatrixXd& rhs) { return back_substitute(rhs); });
+}
+
+Eigen::VectorXd ArapSolver::Impl::free_values(const Points& V_held) const {
+  Eigen::VectorXd c = constraint_values;
+  for (size_t k = 0; k < constraint_held.size(); ++k)
+    c(static_cast<Eigen::Index>(k)) -= constraint_held[k].cwiseProduct(V_held).sum();
+  return c;
+}
+
 Points ArapSolver::solve(const std::vector<Eigen::Matrix3d>& L, const Points& V_held) const {
-  const Eigen::MatrixXd x = back_substitute(assemble_rhs(L, V_held));
+  Eigen::MatrixXd x = back_substitute(assemble_rhs(L, V_held));
+  if (impl_->constraints) impl_->constraints->project(x, impl_->free_values(V_held));
   Points V = V_held;
   for (size_t f = 0; f < impl_->free_vertices.size(); ++f)
     V.row(impl_->free_vertices[f]) = x.row(static_cast<Eigen::Index>(f));
@@ -280,7 +330,8 @@ Eigen::MatrixXd ArapSolver::Impl::free_rows(const Points& load) const {
 
 Points ArapSolver::response(const Points& load) const {
   const Impl& m = *impl_;
-  const Eigen::MatrixXd x = back_substitute(m.free_rows(load));
+  Eigen::MatrixXd x = back_substitute(m.free_rows(load));
+  if (m.constraints) m.constraints->project(x, Eigen::VectorXd::Zero(m.constraints->size()));
   Points V = Points::Zero(m.nv, 3);
   for (size_t f = 0; f < m.free_vertices.size(); ++f) V.row(m.free_vertices[f]) = x.row(static_cast<Eigen::Index>(f));
   return V;
@@ -293,7 +344,11 @@ Points ArapSolver::solve_with_response(const std::vector<Eigen::Matrix3d>& L, co
   Eigen::MatrixXd rhs(nf, 6);
   rhs.leftCols<3>() = assemble_rhs(L, V_held);
   rhs.rightCols<3>() = m.free_rows(load);
-  const Eigen::MatrixXd x = back_substitute(rhs);
+  Eigen::MatrixXd x = back_substitute(rhs);
+  if (m.constraints) {
+    m.constraints->project(x.leftCols<3>(), m.free_values(V_held));
+    m.constraints->project(x.rightCols<3>(), Eigen::VectorXd::Zero(m.constraints->size()));
+  }
   Points V = V_held;
   response = Points::Zero(m.nv, 3);
   for (Eigen::Index f = 0; f < nf; ++f) {
@@ -324,6 +379,9 @@ Eigen::VectorXd ArapSolver::energies(const std::vector<const Points*>& shapes, c
   }
   Eigen::VectorXd e = Eigen::VectorXd::Zero(count);
   for (int b = 0; b < blocks; ++b) e += partial.col(b);
+  if (m.anchor.size())
+    for (int k = 0; k < count; ++k)
+      e(k) += (m.anchor.array() * (*shapes[static_cast<size_t>(k)] - m.anchor_target).rowwise().squaredNorm().array()).sum();
   return e;
 }
 

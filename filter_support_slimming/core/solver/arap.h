@@ -23,6 +23,10 @@
 //           ArapOptions::anchor_floating_components pins its first vertex for you.
 //           Vertices in no tet are held too (nothing determines them).
 //   weights #T, w_t >= 0; defaults to the rest volumes (mm^3), as in the paper.
+//   anchors #V, a_v >= 0 (mm^3), or empty for none: E gains sum_v a_v || v - v^0 ||^2, a spring
+//           from each vertex to its rest position. K_ff gains them on its diagonal, so they are
+//           factored with it; a vertex with a_v > 0 also pins its component's rigid motion.
+//           The optimizer anchors what the support does not need (support_region.h).
 //   L       #T 3 by 3 matrices, one per tet, in the order of T (unitless).
 //   V_held  #V by 3; only the rows of held vertices are read: they are copied to the result.
 // Output:
@@ -80,9 +84,19 @@ class ArapSolver {
   ArapSolver(const TetMesh& rest, const std::vector<int>& pinned, const ArapOptions& options = {});
   ArapSolver(const TetMesh& rest, const Eigen::VectorXd& weights, const std::vector<int>& pinned,
              const ArapOptions& options = {});
+  ArapSolver(const TetMesh& rest, const Eigen::VectorXd& weights, const std::vector<int>& pinned,
+             const Eigen::VectorXd& anchors, const ArapOptions& options = {});
   ~ArapSolver();
   ArapSolver(ArapSolver&&) noexcept;
   ArapSolver& operator=(ArapSolver&&) noexcept;
+
+  // Linear equality constraints every later solve holds (linear_constraints.h), set once after
+  // the factorization, which they leave as it is: sum_v <C_k.row(v), V.row(v)> = c_k, each C_k
+  // #V by 3 (rows of held vertices count with their V_held positions). solve() then returns E's
+  // minimiser under them, response() a displacement within them (sum_v <C_k.row(v), dV.row(v)> =
+  // 0). One back-substitution per constraint. The optimizer holds the part's proportions so
+  // (rigid_proportions.h). Throws std::invalid_argument for mismatched sizes.
+  void set_constraints(const std::vector<Points>& C, const Eigen::VectorXd& c);
 
   // The global step: assemble_rhs + back_substitute, scattered into #V by 3.
   Points solve(const std::vector<Eigen::Matrix3d>& L, const Points& V_held) const;
@@ -106,7 +120,7 @@ class ArapSolver {
   Eigen::MatrixXd assemble_rhs(const std::vector<Eigen::Matrix3d>& L, const Points& V_held) const;
   Eigen::MatrixXd back_substitute(const Eigen::MatrixXd& rhs) const;
 
-  // E(V) for any #V by 3 positions (mm^2 times the weights' unit).
+  // E(V) for any #V by 3 positions (mm^2 times the weights' unit), the anchors' springs included.
   double energy(const Points& V, const std::vector<Eigen::Matrix3d>& L) const;
   // E of several shapes in one pass over the tets (each #V by 3): the same values, bit for bit,
   // as energy() of each.

@@ -11,6 +11,7 @@
 #include "core/optimizer/resolution_ladder.h"
 #include "core/optimizer/support_slimmer.h"
 #include "core/optimizer/slimming.h"
+#include "support/free_to_move.h"
 #include "support/shapes.h"
 
 using namespace slim;
@@ -26,14 +27,16 @@ const Surface& bowl() {
 }
 constexpr int kBase = 12;
 
+// The part free to move (test::free_to_move): so the bowl slims at every rung, best at the middle
+// one, and the choice among the rungs is tested rather than the shape's limits.
 SlimmingOptions laddered_options() {
-  SlimmingOptions o;
+  SlimmingOptions o = test::free_to_move();
   o.resolution = kBase;
   return o;
 }
 
 SlimmingOptions at_one_resolution(int resolution) {
-  SlimmingOptions o;
+  SlimmingOptions o = test::free_to_move();
   o.resolution = resolution;
   o.ladder.multiples.clear();
   return o;

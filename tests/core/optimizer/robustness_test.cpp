@@ -25,6 +25,7 @@
 #include "core/platform/parallel_for.h"
 #include "core/print/overhang.h"
 #include "support/bad_inputs.h"
+#include "support/free_to_move.h"
 #include "support/shapes.h"
 #ifdef SLIM_TESTS_HAVE_VCG
 #include "mesh_io/mesh_io.h"
@@ -102,8 +103,9 @@ TEST(Robustness, ResultDoesNotDependOnScaleOrPosition) {
   // the optimizer is relative, so the share of risky area left must match. The support model is
   // not: it counts a slicer's lengths (0.2 mm layers, 2.86 mm cells), so a part's support does not
   // scale with it, and the default choice of iterate by it is left out here (the shadow volume
-  // chooses); ResultDoesNotDependOnPosition has it in.
-  SlimmingOptions o;
+  // chooses); ResultDoesNotDependOnPosition has it in. The arch is free to move
+  // (test::free_to_move), so that its crown rises and the result differs from the input.
+  SlimmingOptions o = test::free_to_move();
   o.steps.max_iterations = 10;
   o.result.judge = ResultJudge::ShadowVolume;
   const SlimmingResult base = slim_supports(test::arch(), o);
@@ -122,10 +124,12 @@ TEST(Robustness, ResultDoesNotDependOnScaleOrPosition) {
 TEST(Robustness, ResultDoesNotDependOnPosition) {
   // With the defaults, the support model's choice included: its grid is centred on the part's
   // bounding box and its figure averaged over grid phases, so moving the part changes nothing.
+  // The arch is free to move (held to its height, its crown saves under the least saving).
   const Surface arch = test::refined(test::arch(), 3);
-  const SlimmingResult base = slim_supports(arch, {});
+  const SlimmingOptions o = test::free_to_move();
+  const SlimmingResult base = slim_supports(arch, o);
   ASSERT_LT(base.support_after_mm3.value(), base.support_before_mm3.value());
-  const SlimmingResult far = slim_supports(test::transformed(arch, Eigen::Matrix3d::Identity(), {1e3, -2e3, 0.0}), {});
+  const SlimmingResult far = slim_supports(test::transformed(arch, Eigen::Matrix3d::Identity(), {1e3, -2e3, 0.0}), o);
   EXPECT_EQ(far.iterations, base.iterations);
   EXPECT_NEAR(far.support_after_mm3.value(), base.support_after_mm3.value(), 1e-6 * base.support_before_mm3.value());
   EXPECT_NEAR(far.after.risky_share(), base.after.risky_share(), 1e-6);

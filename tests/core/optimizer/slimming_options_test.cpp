@@ -58,6 +58,15 @@ TEST(SlimmingOptions, TheMethodIsAppliedOnce) {
   EXPECT_TRUE(p.ladder.multiples.empty());
   EXPECT_FALSE(p.keep_volume);
   EXPECT_FALSE(p.guards.local_inversion_guard);
+  EXPECT_FALSE(p.guards.surface_guard);
+  // The paper's method lets the part stretch and move as far as the budget allows.
+  EXPECT_FALSE(p.hold_proportions);
+  EXPECT_EQ(p.region.stiffness, 0.0);
+  EXPECT_FALSE(p.guards.max_rise_pct.has_value());
+  EXPECT_FALSE(p.result.max_mean_displacement_pct.has_value());
+  EXPECT_TRUE(c.hold_proportions);
+  EXPECT_GT(c.region.stiffness, 0.0);
+  EXPECT_TRUE(c.guards.max_rise_pct.has_value());
   // Applying it again changes nothing.
   const SlimmingOptions twice = method_applied(p);
   EXPECT_EQ(twice.steps.margin_deg, p.steps.margin_deg);
@@ -86,6 +95,18 @@ TEST(SlimmingOptions, ValuesOutOfRangeAreRefusedWithAReason) {
   o = {};
   o.guards.max_memory_bytes = -1.0;
   EXPECT_NE(reason(o).find("memory budget"), std::string::npos);
+  o = {};
+  o.result.max_mean_displacement_pct = -1.0;
+  EXPECT_NE(reason(o).find("mean displacement limit"), std::string::npos);
+  o = {};
+  o.guards.max_rise_pct = 101.0;
+  EXPECT_NE(reason(o).find("allowed rise"), std::string::npos);
+  o = {};
+  o.region.stiffness = -1.0;
+  EXPECT_NE(reason(o).find("anchoring stiffness"), std::string::npos);
+  o = {};
+  o.region.ramp_share = NAN;
+  EXPECT_NE(reason(o).find("free region"), std::string::npos);
   o = {};
   o.rigid_features = {true, false};
   EXPECT_NE(reason(o).find("one entry per face"), std::string::npos);

@@ -57,7 +57,9 @@ namespace {
 double modelled_support(const Surface& s) { return estimate_support(s).volume_mm3; }
 
 // The optimizers compared, not the choice of what to return: the least saving is off (the T's
-// slimming saves 1-2% at the slicer's own grid phase, and by default comes back unchanged).
+// slimming saves 1-2% at the slicer's own grid phase, and by default comes back unchanged), and
+// the part may stretch as the paper's method lets it (allow_stretch); slimming_shape_test.cpp
+// checks what the default's holds on the shape cost.
 void expect_more_support_saved_than_by_the_paper(const Surface& mesh) {
   const double before = modelled_support(mesh);
   for (double budget : {2.0, 3.0, 5.0, 10.0}) {
@@ -69,6 +71,7 @@ void expect_more_support_saved_than_by_the_paper(const Surface& mesh) {
     o.method = SlimmingMethod::Paper;
     const SlimmingResult paper = slim_supports(mesh, o);
     o.method = SlimmingMethod::Coherent;
+    allow_stretch(o);
     const SlimmingResult coherent = slim_supports(mesh, o);
     const double paper_saved = before - modelled_support(paper.surface);
     const double coherent_saved = before - modelled_support(coherent.surface);
@@ -93,13 +96,15 @@ TEST(Slimming, CoherentSavesMoreSupportThanThePaperOnTheT) {
 // The mushroom's flat cap bends at its rim, which saves 4% of its modelled support over the grid
 // phases but 0.3% at the slicer's own phase for the part as placed (PrusaSlicer: +0.2%): less than
 // the least saving worth a change of shape (3%), so the input comes back bit for bit and the
-// stop reason says why. With any saving allowed the same run returns the slimmed part.
+// stop reason says why. With any saving allowed the same run returns the slimmed part. The cap
+// may stretch here: held to its proportions, its rim saves nothing at all.
 TEST(Slimming, ASavingWithinTheModelsErrorLeavesTheInputAsItWas) {
   const Surface mushroom = test::refined(test::mushroom(), 2);
   const double least = ResultChoiceOptions{}.min_support_saving_pct;
   for (double budget : {2.0, 5.0, 10.0}) {
     SCOPED_TRACE("budget " + std::to_string(budget) + "%");
     SlimmingOptions o;
+    allow_stretch(o);
     o.budget = DeviationBudget::from_percent(budget);
     const SlimmingResult kept = slim_supports(mushroom, o);
     EXPECT_EQ(kept.iterations, 0);
@@ -156,17 +161,19 @@ TEST(Slimming, TheCoherentMethodAimsPastTheSlicersThreshold) {
 
 TEST(Slimming, CoherentInversionGuardHoldsVerticesBackAndGoesOn) {
   // On the T at 10% with the earlier settings of the method (10-degree steps, risky tets ten times
-  // stiffer, no volume kept, the shadow volume choosing; the defaults bend it too gently to get
-  // there) the bevels along the arms' edges squeeze the walls above them until a step would invert
+  // stiffer, no volume kept, the shadow volume choosing, free to stretch and to move; the defaults
+  // bend it too gently to get there) the bevels along the arms' edges squeeze the walls above them until a step would invert
   // tets there. The coherent guard puts those tets' vertices back and carries on, and later
   // iterates are better: the result comes after the first iteration held back.
   SlimmingOptions o;
+  allow_stretch(o);
   o.budget = DeviationBudget::from_percent(10.0);
   o.steps.max_step_deg = 10.0;
   o.coherence.risky_boost = 10.0;
   o.keep_volume = false;
   o.result.judge = ResultJudge::ShadowVolume;
   o.result.max_crease_share_pct.reset();
+  o.result.max_mean_displacement_pct.reset();
   const Surface t = test::refined(test::t_shape(), 4);
   const SlimmingResult r = slim_supports(t, o);
   int first_held = 0;
@@ -209,7 +216,8 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
         EXPECT_NEAR(r.support_after_mm3.value(), modelled_support(r.surface), 1e-9 * r.support_before_mm3.value());
         // A result saves at least the least worth a change of shape, over the grid phases and at
         // the slicer's own; the mushroom's rim and the T's arms save less at the slicer's phase
-        // (PrusaSlicer: +0.2% and +1.0%), and they come back unchanged; the others are slimmed.
+        // (PrusaSlicer: +0.2% and +1.0%), and so does the arch's crown held to its height: they
+        // come back unchanged; the bunny is slimmed.
         const double least = o.result.min_support_saving_pct / 100.0;
         const double phase_bar = (1.0 - least) * r.support_slicer_phase_before_mm3.value();
         for (const IterationStats& st : r.history)
@@ -220,7 +228,7 @@ TEST(Slimming, NeverReturnsAPartThatNeedsMoreSupport) {
           EXPECT_LE(r.support_after_mm3.value(), (1.0 - least) * r.support_before_mm3.value());
           EXPECT_LE(r.support_slicer_phase_after_mm3.value(), phase_bar);
         }
-        EXPECT_EQ(r.iterations == 0, std::string(name) == "mushroom" || std::string(name) == "T") << r.stop_reason;
+        EXPECT_EQ(r.iterations == 0, std::string(name) != "bunny") << r.stop_reason;
       }
       EXPECT_EQ(r.history.back().inverted_tets, 0);
       EXPECT_GE(r.surface.V.col(2).minCoeff(), -1e-9);  // nothing below the plate

@@ -14,6 +14,7 @@
 #endif
 
 #include "core/solver/arap.h"
+#include "support/arap_reference.h"
 #include "support/tet_grid.h"
 
 using namespace slim;
@@ -45,19 +46,8 @@ Points rigidly_moved(const Points& V, const Matrix3d& R, const Vector3d& shift) 
   return ((V * R.transpose()).rowwise() + shift.transpose()).eval();
 }
 
-// dE/dV written out from E = sum_t w_t ||V_t - L_t V_t^0||^2, independently of the solver:
-// with D = V_t - L_t V_t^0, dE/dv_j = 2 w D_j (j = 1..3) and dE/dv_0 = -2 w (D_1 + D_2 + D_3).
 Points energy_gradient(const TetMesh& rest, const Points& V, const std::vector<Matrix3d>& L) {
-  Points g = Points::Zero(V.rows(), 3);
-  for (int t = 0; t < rest.T.rows(); ++t) {
-    const double w = tet_volume(rest.V, rest.T.row(t));
-    const Matrix3d D = edge_matrix(V, rest.T.row(t)) - L[static_cast<size_t>(t)] * edge_matrix(rest.V, rest.T.row(t));
-    for (int j = 0; j < 3; ++j) {
-      g.row(rest.T(t, j + 1)) += 2.0 * w * D.col(j).transpose();
-      g.row(rest.T(t, 0)) -= 2.0 * w * D.col(j).transpose();
-    }
-  }
-  return g;
+  return test::arap_energy_gradient(rest, V, L);
 }
 
 double max_free_row_norm(const Points& g, const ArapSolver& s) {
