@@ -33,14 +33,18 @@ double affine_departure_pct(const Points& X, const Points& Y) {
   const Points Xc = X.rowwise() - cx;
   const Points U = (Y.rowwise() - cy) - Xc;
   const Eigen::Matrix3d G = Xc.transpose() * Xc, R = Xc.transpose() * U;
-  Eigen::JacobiSVD<Eigen::Matrix3d> gram(G, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  gram.setThreshold(1e-18);  // of the largest singular value of G: extents below 1e-9 of the largest
-  const Eigen::Matrix3d B = gram.solve(R);
+  const Eigen::Matrix3d B = affine_fit_solve(G, R);
   const Eigen::Vector3d sigma = Eigen::JacobiSVD<Eigen::Matrix3d>(Eigen::Matrix3d::Identity() + B).singularValues();
   return 100.0 * (sigma.array() - 1.0).abs().maxCoeff();
 }
 
 }  // namespace
+
+Eigen::Matrix3d affine_fit_solve(const Eigen::Matrix3d& G, const Eigen::Matrix3d& R) {
+  Eigen::JacobiSVD<Eigen::Matrix3d> gram(G, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  gram.setThreshold(1e-18);  // of the largest singular value of G: extents below 1e-9 of the largest
+  return gram.solve(R);
+}
 
 Proportions proportions(const Surface& input, const Points& result_V, const Eigen::Vector3d& d) {
   if (result_V.rows() != input.V.rows() || !result_V.allFinite())

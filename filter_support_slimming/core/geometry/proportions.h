@@ -40,4 +40,9 @@ struct Proportions {
 
 Proportions proportions(const Surface& input, const Points& result_V, const Eigen::Vector3d& d);
 
+// The least-norm solve of the affine fit's normal equations G B = R (G = Xc^T Xc of the centred
+// input, 3 by 3): a direction in which the input's extent is below 1e-9 of its largest is left
+// out. Shared with the optimizer's stretch constraints (rigid_proportions.h), so both read one map.
+Eigen::Matrix3d affine_fit_solve(const Eigen::Matrix3d& G, const Eigen::Matrix3d& R);
+
 }  // namespace slim

@@ -1,14 +1,12 @@
 #include "core/optimizer/rigid_proportions.h"
 
-#include <Eigen/SVD>
+#include "core/geometry/proportions.h"
 
 namespace slim {
 
 std::vector<Points> stretch_constraints(const Surface& input, const Embedding& embedding, Eigen::Index domain_vertices) {
   const Points Xc = input.V.rowwise() - input.V.colwise().mean();
-  Eigen::JacobiSVD<Eigen::Matrix3d> gram(Xc.transpose() * Xc, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  gram.setThreshold(1e-18);  // as proportions.h: extents below 1e-9 of the largest are left out
-  const Eigen::Matrix3d G_inverse = gram.solve(Eigen::Matrix3d::Identity());
+  const Eigen::Matrix3d G_inverse = affine_fit_solve(Xc.transpose() * Xc, Eigen::Matrix3d::Identity());
   const Points Q = Xc * G_inverse;  // #V by 3: B = Q^T (Y - X)
   Points Z = Points::Zero(domain_vertices, 3);  // E^T Q
   for (Eigen::Index v = 0; v < Q.rows(); ++v)
