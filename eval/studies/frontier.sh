@@ -21,7 +21,9 @@
 #                 measures the slicers: at the slicer's own phase, the mean of the turns 0° and
 #                 90° about the print axis (a quarter turn lays the support lines along the part's
 #                 other axis; 180° and 270° repeat them), by eval/support_model_tool on both files.
-# Writes OUT/frontier.tsv (every figure, one row per run), OUT/frontier.md (the table) and, with
+# Writes OUT/frontier.tsv (every figure, one row per run, with the corpus half and the report's
+# shape figures), OUT/frontier.md (the table, then the medians and worst per kind and half:
+# eval/studies/frontier-summary.sh) and, with
 # gnuplot, a plot of support cut against Hausdorff distance per model (--plot, default
 # OUT/frontier.png). Every run is cached in OUT/<model>/<method>_<budget>/: a second call only
 # does what is missing, so an interrupted study resumes; --table-only runs nothing and tables
@@ -36,7 +38,7 @@ while [ $# -gt 0 ]; do
     --table-only) table_only=1; shift; continue ;;
     --corpus) corpus="$2" ;; --out) out="$2" ;; --budgets) budgets="$2" ;; --methods) methods="$2" ;;
     --models) models="$2" ;; --turns) turns="$2" ;; --build) build="$2" ;; --plot) plot="$2" ;;
-    -h|--help) sed -n 2,29p "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n 2,31p "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "frontier: unknown argument $1" >&2; exit 1 ;;
   esac
   shift 2
@@ -162,16 +164,23 @@ judged_change() {
 
 # ---- the table ----------------------------------------------------------------------------------
 tsv="$out/frontier.tsv"
-printf 'model\tkind\tmethod\tbudget_pct\tprusa_change_pct\tcura_change_pct\thausdorff_pct\tvolume_change_pct\tcrease_share_pct\tcrease_p99_deg\tmodel_change_pct\tprusa_before_mm3\tprusa_after_mm3\tslim_s\trun_s\tmodel_slicer_phase_change_pct\tmodel_judged_change_pct\n' >"$tsv"
+printf 'model\tkind\tmethod\tbudget_pct\tprusa_change_pct\tcura_change_pct\thausdorff_pct\tvolume_change_pct\tcrease_share_pct\tcrease_p99_deg\tmodel_change_pct\tprusa_before_mm3\tprusa_after_mm3\tslim_s\trun_s\tmodel_slicer_phase_change_pct\tmodel_judged_change_pct\thalf\taffine_departure_pct\theight_change_pct\tmean_displacement_pct\tfolded_faces\n' >"$tsv"
 missing=0
 for name in "${names[@]}"; do
   kind="$(awk -F'\t' -v n="$name" '$1 == n { print $2 }' "$corpus/manifest.tsv")"
+  # The corpus half (tune or check; corpus.sh's manifest), empty for a corpus without halves.
+  half="$(awk -F'\t' -v n="$name" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "half") h = i } $1 == n && h { print $h }' "$corpus/manifest.tsv")"
   for method in "${method_list[@]}"; do
     for budget in "${budget_list[@]}"; do
-      row="$out/$name/${method}_$budget/row.tsv"
+      row="$out/$name/${method}_$budget/row.tsv" report="$out/$name/${method}_$budget/report.json"
       if [ -s "$row" ]; then
-        awk -F'\t' -v OFS='\t' -v k="$kind" -v j="$(judged_change "$name" "$method" "$budget")" \
-          '{ $15 = $15 OFS j; $1 = $1 OFS k; print }' "$row" >>"$tsv"
+        # The shape figures from the run's report (empty where the run has none).
+        shape=""
+        for key in affine_departure_pct height_change_pct mean_displacement_pct folded_faces; do
+          shape="$shape	$(json_number "$report" "$key")"
+        done
+        awk -F'\t' -v OFS='\t' -v k="$kind" -v j="$(judged_change "$name" "$method" "$budget")" -v h="$half" -v s="$shape" \
+          '{ $15 = $15 OFS j; $1 = $1 OFS k; print $0 OFS h s }' "$row" >>"$tsv"
       else missing=$((missing + 1)); fi
     done
   done
@@ -185,6 +194,10 @@ with_model="$(awk -F'\t' 'NR > 1 && $11 != "" { print "yes"; exit }' "$tsv")"
     line = sprintf("| %s | %s | %s | %s%% | %s%% | %s%% | %s | %s%% | %s%% (%s°) |", $1, $2, $3, $4, $5, $6, $7, $8, $9, $10)
     if (m != "") line = line sprintf(" %s%% | %s | %s |", $11, $16 == "" ? "n/a" : $16 "%", $17 == "" ? "n/a" : $17 "%")
     print line }' "$tsv"
+  echo
+  echo "Judged by the median, per kind of model and corpus half (eval/studies/frontier-summary.sh):"
+  echo
+  "$repo/eval/studies/frontier-summary.sh" "$tsv"
 } >"$out/frontier.md"
 cat "$out/frontier.md"
 
