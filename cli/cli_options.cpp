@@ -1,6 +1,7 @@
 #include "cli_options.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -80,6 +81,14 @@ int integer(const std::string& flag, const std::string& text) {
   return static_cast<int>(v);
 }
 
+// A number that must not be negative (a typo's minus sign must not turn a limit off).
+double at_least_zero(const std::string& flag, double v, const std::string& zero_means) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  if (v < 0.0) die(flag + " expects a value >= 0" + zero_means + ", got " + text);
+  return v;
+}
+
 // A limit as the CLI and the dialog give it (creases, displacement): a percentage, 0 for no limit.
 std::optional<double> limit_pct(double pct) { return pct == 0.0 ? std::nullopt : std::optional<double>(pct); }
 
@@ -144,7 +153,7 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
       else if (v == "paper") o.method = SlimmingMethod::Paper;
       else die("--method expects coherent or paper, got '" + v + "'");
     } else if (a == "--iterations") o.steps.max_iterations = integer(a, value(i));
-    else if (a == "--max-deviation") o.budget = DeviationBudget::from_percent(number(a, value(i)));
+    else if (a == "--max-deviation") o.budget = DeviationBudget::from_percent(at_least_zero(a, number(a, value(i)), " (0: no budget)"));
     else if (a == "--max-k") o.steps.max_k = integer(a, value(i));
     else if (a == "--max-creases") o.result.max_crease_share_pct = limit_pct(number(a, value(i))), creases_given = true;
     else if (a == "--min-saving") o.result.min_support_saving_pct = number(a, value(i)), saving_given = true;
@@ -162,7 +171,7 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
       else die("--orient-effort expects fast, normal or thorough, got '" + v + "'");
     } else if (a == "--oriented-output") c.oriented_out = value(i);
     else if (a == "--report") c.report = value(i);
-    else if (a == "--threads") o.threads = integer(a, value(i));
+    else if (a == "--threads") o.threads = static_cast<int>(at_least_zero(a, integer(a, value(i)), " (0: every core)"));
     else if (a == "--quiet") c.quiet = true;
     else if (!a.empty() && a[0] == '-') die("unknown option " + a + " (see --help)");
     else if (c.in.empty()) c.in = a;

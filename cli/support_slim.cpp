@@ -1,6 +1,8 @@
 // support-slim IN -o OUT [options]: Support Slimming without MeshLab. Thin: parse, load, call the
 // core, save, summarise. Exits 0 on success, 1 with a one-line reason otherwise.
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -39,20 +41,45 @@ OrientedSlimming run_job(const cli::CliOptions& c, const io::MeshFile& file, con
   return job;
 }
 
-// A report that could not be written would be found missing only after the run and after OUT was
-// written: its folder is checked first.
-void check_report_folder(const std::string& report) {
-  if (report.empty()) return;
-  const std::filesystem::path folder = std::filesystem::absolute(report).parent_path();
-  if (!std::filesystem::is_directory(folder) || access(folder.c_str(), W_OK) != 0)
-    cli::die("cannot write the report " + report + ": its folder " + folder.string() + " does not exist or is not writable");
+// A file that could not be written would be found missing only after the run: each output's
+// folder and format are checked first, and so is the input, so that a bad path costs no work.
+void check_output(const std::string& path, const std::string& what, bool mesh) {
+  if (path.empty()) return;
+  const std::filesystem::path absolute = std::filesystem::absolute(path), folder = absolute.parent_path();
+  if (std::filesystem::is_directory(absolute)) cli::die("cannot write " + what + " " + path + ": it is a folder");
+  if (mesh) {
+    try {
+      io::format_of(path);
+    } catch (const std::exception& e) {
+      cli::die(e.what());
+    }
+  }
+  if (!std::filesystem::is_directory(folder))
+    cli::die("cannot write " + what + " " + path + ": its folder " + folder.string() + " does not exist");
+  if (access(folder.c_str(), W_OK) != 0)
+    cli::die("cannot write " + what + " " + path + ": its folder " + folder.string() + " is not writable (" + std::strerror(errno) + ")");
+}
+
+void check_files(const cli::CliOptions& c) {
+  std::error_code error;
+  if (!std::filesystem::exists(c.in, error)) cli::die("cannot read " + c.in + ": no such file");
+  if (std::filesystem::is_directory(c.in, error)) cli::die("cannot read " + c.in + ": it is a folder, not a mesh file");
+  if (access(c.in.c_str(), R_OK) != 0) cli::die("cannot read " + c.in + ": " + std::strerror(errno));
+  try {
+    io::format_of(c.in);
+  } catch (const std::exception& e) {
+    cli::die(e.what());
+  }
+  check_output(c.out, "the result", true);
+  check_output(c.oriented_out, "the oriented part", true);
+  check_output(c.report, "the report", false);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   cli::CliOptions c = cli::parse_arguments(std::vector<std::string>(argv + 1, argv + argc));
-  check_report_folder(c.report);
+  check_files(c);
   WeldedView view;  // the surface the core computes on (core/geometry/welded_view.h)
   try {
     const io::MeshFile file = io::read_mesh(c.in);

@@ -167,6 +167,32 @@ TEST(Cli, ANegativePlateToleranceIsRefused) {
   fs::remove_all(dir);
 }
 
+// A typo's minus sign, a missing folder, a folder as the input or an unknown format is refused
+// before any work: one line naming the reason, no progress printed (progress starts with the
+// first stage), no file written.
+TEST(Cli, BadValuesAndPathsAreRefusedBeforeAnyWork) {
+  const fs::path dir = scratch();
+  const std::string bunny = "'" + test::sample_bunny_path() + "'";
+  const std::string out = " -o '" + (dir / "o.ply").string() + "'";
+  for (const auto& [args, reason] : std::vector<std::pair<std::string, std::string>>{
+           {bunny + out + " --max-deviation -1", "--max-deviation expects a value >= 0 (0: no budget), got -1"},
+           {bunny + out + " --threads -3", "--threads expects a value >= 0 (0: every core), got -3"},
+           {bunny + " -o '" + (dir / "missing" / "o.ply").string() + "'", "its folder " + (dir / "missing").string() + " does not exist"},
+           {bunny + " -o '" + dir.string() + "'", "it is a folder"},
+           {bunny + " -o '" + (dir / "o.3mf").string() + "'", "unknown mesh format"},
+           {bunny + out + " --orient --oriented-output '" + (dir / "missing" / "p.ply").string() + "'", "cannot write the oriented part"},
+           {"'" + dir.string() + "'" + out, "it is a folder, not a mesh file"},
+           {"'" + (dir / "missing.ply").string() + "'" + out, "no such file"}}) {
+    const CliRun r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_NE(r.err.find(reason), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("support-slim: ", 0), 0u) << args << ": " << r.err;  // no progress before it
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "o.ply")) << args;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Cli, BadInputExitsNonZeroWithOneLine) {
   const fs::path dir = scratch();
   const std::string bunny = "'" + test::sample_bunny_path() + "'";
