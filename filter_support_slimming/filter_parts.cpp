@@ -33,7 +33,7 @@ slim::PrintSetup print_setup(const RichParameterList& par) {
 }
 
 // The filter's parameters -> the core's options. Ranges are checked by the core, which says what
-// is wrong in words the log can show.
+// is wrong in words the log can show; a negative budget here, as the core reads it as none.
 slim::SlimmingOptions slimming_options(const RichParameterList& par) {
   slim::SlimmingOptions o;
   o.print = print_setup(par);
@@ -41,7 +41,10 @@ slim::SlimmingOptions slimming_options(const RichParameterList& par) {
   o.domain = par.getEnum("domain") == 1 ? slim::DomainKind::TetGen : slim::DomainKind::Voxel;
   o.method = par.getEnum("method") == 1 ? slim::SlimmingMethod::Paper : slim::SlimmingMethod::Coherent;
   o.steps.max_iterations = par.getInt("maxIterations");
-  o.budget = slim::DeviationBudget::from_percent(par.getFloat("maxDeviation"));
+  const float budget = par.getFloat("maxDeviation");
+  if (!(budget >= 0.0f))  // a typo's minus sign must not turn the budget off
+    throw FilterFailure(QString("the deviation budget must be >= 0 % (0: no budget), got %1").arg(double(budget)));
+  o.budget = slim::DeviationBudget::from_percent(budget);
   o.steps.max_k = par.getInt("maxK");
   if (par.getBool("allowStretch")) slim::allow_stretch(o);
   return o;

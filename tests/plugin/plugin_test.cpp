@@ -106,6 +106,12 @@ TEST(Plugin, BadParametersFailWithoutTouchingTheLayer) {
   params.setValue("printDirection", Point3fValue(vcg::Point3f(0, 0, 0)));
   EXPECT_FALSE(h.apply(kOverhang, md, params));
   EXPECT_TRUE(h.lastError().contains("print direction")) << h.lastError().toStdString();
+  // A negative budget is refused, not taken as "no budget"; the document keeps its one layer.
+  params = h.defaults(kSlimming, md);
+  params.setValue("maxDeviation", FloatValue(-1.0f));
+  EXPECT_FALSE(h.apply(kSlimming, md, params));
+  EXPECT_TRUE(h.lastError().contains("deviation budget must be >= 0")) << h.lastError().toStdString();
+  EXPECT_EQ(md.meshList.size(), 1);
 }
 
 TEST(Plugin, SupportSlimmingAddsASlimmedLayerAndLeavesTheInputAlone) {
