@@ -13,6 +13,8 @@ void validate_coherence(const CoherenceOptions& c) {
     throw std::invalid_argument("the coherent weight factors must be finite and positive");
   if (!(c.smoothing >= 0.0 && c.smoothing <= 1.0) || !(c.propagation >= 0.0 && c.propagation <= 1.0))
     throw std::invalid_argument("the coherent smoothing and propagation shares must be in [0, 1]");
+  if (!(c.costly_share > 0.0 && c.costly_share <= 1.0))
+    throw std::invalid_argument("the share of the support cost whose overhangs are turned must be in (0, 1]");
   if (!(c.flat_overhang_deg >= 0.0 && c.flat_overhang_deg < 90.0))
     throw std::invalid_argument("the flat-overhang angle must be in [0, 90) degrees");
   if (!(c.edge_turn_slack_deg >= 0.0 && c.edge_turn_slack_deg <= 180.0))

@@ -76,6 +76,11 @@ struct CoherenceOptions {
                                  // the interior follows instead of holding it back; 1 = off
   double risky_boost = 5.0;      // factor on tets that hold faces risky at the start: their
                                  // rotations are carried out instead of averaged away; 1 = off
+  // The overhangs turned (costly_overhangs.h): the costliest risky faces, by the support column
+  // under each, that carry this share of their support cost, (0, 1]; 1 = every risky face. The
+  // others get no turn, no free region and no boost. On the corpus's tune half a share below 1
+  // did not pay (docs/algorithm.md), so every risky face is turned.
+  double costly_share = 1.0;
   // The local step (coherence.h).
   double smoothing = 0.5;        // share of the face-neighbouring risky tets' mean (area-weighted
                                  // quaternion average) in a risky tet's extra rotation; 0 = off
@@ -93,7 +98,7 @@ struct CoherenceOptions {
 
   static CoherenceOptions none() {
     CoherenceOptions o;
-    o.interior_weight = o.risky_boost = 1.0;
+    o.interior_weight = o.risky_boost = o.costly_share = 1.0;
     o.smoothing = o.propagation = 0.0;
     o.edge_turns = false;
     return o;

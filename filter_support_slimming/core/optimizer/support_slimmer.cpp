@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/optimizer/coherence.h"
+#include "core/optimizer/costly_overhangs.h"
 #include "core/optimizer/surface_guards.h"
 #include "core/optimizer/rigid_proportions.h"
 #include "core/optimizer/step_guards.h"
@@ -90,7 +91,10 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
 
   const Points n0 = face_normals(input_);
   local_.set_rest(mesh);
-  local_.pieces = constraint_pieces(domain_.embedding, mesh.T.rows(), before.on_plate, n0);
+  costly_ = costly_overhangs(input_, before, d, o.coherence.costly_share);
+  std::vector<bool> left_alone = before.on_plate;  // no piece: no turn asked for
+  for (size_t f = 0; f < left_alone.size(); ++f) left_alone[f] = left_alone[f] || (before.risky[f] && !costly_[f]);
+  local_.pieces = constraint_pieces(domain_.embedding, mesh.T.rows(), left_alone, n0);
   local_.d = d;
   local_.tau = std::sin(std::max(0.0, rule.print.alpha_max_deg - *o.steps.margin_deg) * M_PI / 180.0);
   local_.max_step = *o.steps.max_step_deg * M_PI / 180.0;
@@ -98,7 +102,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   local_.proxies.max_k = o.steps.max_k;
   {
     ScopedSeconds timer(times_.local);  // the local step's input
-    TieDirections ties = tie_directions(input_, mesh, local_.pieces, n0, before.risky, d, rule.diagonal_mm, o.coherence);
+    TieDirections ties = tie_directions(input_, mesh, local_.pieces, n0, costly_, d, rule.diagonal_mm, o.coherence);
     local_.tie = std::move(ties.tie);
     local_.edge_axis = std::move(ties.edge_axis);
   }
@@ -129,7 +133,7 @@ void SupportSlimmer::factor_global_step(const OverhangReport& before, double dia
     const auto& pieces = local_.pieces[static_cast<size_t>(t)];
     weights_(t) = tet_volume(mesh.V, mesh.T.row(t));
     if (pieces.empty()) weights_(t) *= options_.coherence.interior_weight;
-    const bool risky = std::any_of(pieces.begin(), pieces.end(), [&](const auto& pc) { return before.risky[static_cast<size_t>(pc.first)]; });
+    const bool risky = std::any_of(pieces.begin(), pieces.end(), [&](const auto& pc) { return costly_[static_cast<size_t>(pc.first)]; });
     if (risky) weights_(t) *= options_.coherence.risky_boost;
     if (features_->tet_feature()[static_cast<size_t>(t)] >= 0) weights_(t) *= kFeatureWeight;
   }
@@ -140,7 +144,7 @@ void SupportSlimmer::factor_global_step(const OverhangReport& before, double dia
   ao.anchor_floating_components = true;
   {
     ScopedSeconds timer(times_.factorization);
-    const Eigen::VectorXd anchors = region_anchors(input_, before.risky, mesh, diagonal_mm, options_.region);
+    const Eigen::VectorXd anchors = region_anchors(input_, costly_, mesh, diagonal_mm, options_.region);
     arap_ = std::make_unique<ArapSolver>(mesh, weights_, pinned, anchors, ao);
     if (options_.hold_proportions) {
       const std::vector<Points> C = stretch_constraints(input_, domain_.embedding, mesh.V.rows());

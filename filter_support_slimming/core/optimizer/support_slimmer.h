@@ -99,6 +99,7 @@ class SupportSlimmer {
   std::unique_ptr<VolumeKeeping> volume_;  // when the coherent options keep the volume
   std::unique_ptr<SurfaceGuards> surface_guards_;  // none for the paper's method
   std::vector<std::vector<int>> neighbours_;
+  std::vector<bool> costly_;  // #F: the overhangs turned (costly_overhangs.h)
   Points V_;             // the current domain positions
   Surface current_;      // the current surface: its positions, the input's faces
   CheckedSurface current_view_;

@@ -101,6 +101,11 @@ TEST(SlimmingOptions, ValuesOutOfRangeAreRefusedWithAReason) {
   o = {};
   o.guards.max_rise_pct = 101.0;
   EXPECT_NE(reason(o).find("allowed rise"), std::string::npos);
+  for (const double share : {0.0, 1.5, double(NAN)}) {
+    o = {};
+    o.coherence.costly_share = share;
+    EXPECT_NE(reason(o).find("support cost whose overhangs are turned"), std::string::npos) << share;
+  }
   o = {};
   o.region.stiffness = -1.0;
   EXPECT_NE(reason(o).find("anchoring stiffness"), std::string::npos);
