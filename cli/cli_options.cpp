@@ -8,6 +8,8 @@
 #include <optional>
 #include <sstream>
 
+#include "core/platform/version.h"
+
 namespace slim::cli {
 
 namespace {
@@ -62,6 +64,7 @@ options:
   --report FILE.json       also write every figure of the summary as JSON (docs/usage.md)
   --threads N              OpenMP threads (the result does not depend on it)
   --quiet                  no progress on stderr
+  --version                the version, and exit
   -h, --help               this text
 )";
 
@@ -135,6 +138,9 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
     const std::string& a = args[i];
     if (a == "-h" || a == "--help") {
       std::cout << kUsage;
+      std::exit(0);
+    } else if (a == "--version") {
+      std::cout << "support-slim " << version() << "\n";
       std::exit(0);
     } else if (a == "-o" || a == "--output") c.out = value(i);
     else if (a == "--angle") o.print.alpha_max_deg = number(a, value(i));

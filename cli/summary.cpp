@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/optimizer/resolution_ladder.h"
+#include "core/platform/version.h"
 
 namespace slim::cli {
 
@@ -153,6 +154,28 @@ void print_summary(const RunReport& run) {
   print_shape_cost(run.figures, orient);
 }
 
+namespace {
+
+// The settings the run read (the method applied: the paper's method has no limits), as keys of
+// the report; a limit that is off is 0, as the CLI takes it.
+std::string settings_json(const SlimmingOptions& asked) {
+  const SlimmingOptions o = method_applied(asked);
+  const Eigen::Vector3d& d = o.print.direction;
+  std::ostringstream os;
+  os << ",\n  \"method\": " << json_string(o.method == SlimmingMethod::Paper ? "paper" : "coherent")
+     << ",\n  \"alpha_max_deg\": " << json_number(o.print.alpha_max_deg) << ",\n  \"print_direction_given\": ["
+     << json_number(d.x()) << ", " << json_number(d.y()) << ", " << json_number(d.z()) << "]"
+     << ",\n  \"resolution_given\": " << o.resolution << ",\n  \"one_resolution\": " << (o.ladder.multiples.empty() ? "true" : "false")
+     << ",\n  \"max_iterations\": " << o.steps.max_iterations
+     << ",\n  \"max_creases_pct\": " << json_number(o.result.max_crease_share_pct.value_or(0.0))
+     << ",\n  \"max_displacement_pct\": " << json_number(o.result.max_mean_displacement_pct.value_or(0.0))
+     << ",\n  \"min_saving_pct\": " << json_number(o.result.min_support_saving_pct)
+     << ",\n  \"allow_stretch\": " << (o.hold_proportions ? "false" : "true");
+  return os.str();
+}
+
+}  // namespace
+
 void write_report(const std::string& path, const RunReport& run) {
   const SlimmingFigures& f = run.figures;
   const SlimmingResult& r = run.job->slimming;
@@ -163,8 +186,8 @@ void write_report(const std::string& path, const RunReport& run) {
                                  {"domain_vertices", r.domain_vertices},
                                  {"domain_tets", r.domain_tets}});
   std::ostringstream os;
-  os << "{\n  \"input\": " << json_string(run.in) << ",\n  \"output\": " << json_string(run.out)
-     << ",\n  \"oriented\": " << (run.oriented ? "true" : "false") << ",\n  \"stop_reason\": " << json_string(r.stop_reason);
+  os << "{\n  \"version\": " << json_string(version()) << ",\n  \"input\": " << json_string(run.in)
+     << ",\n  \"output\": " << json_string(run.out) << (run.options ? settings_json(*run.options) : "") << ",\n  \"oriented\": " << (run.oriented ? "true" : "false") << ",\n  \"stop_reason\": " << json_string(r.stop_reason);
   if (run.oriented) {
     const Eigen::Vector3d& d = run.job->orientation.best.direction;
     os << ",\n  \"print_direction\": [" << json_number(d.x()) << ", " << json_number(d.y()) << ", " << json_number(d.z())

@@ -6,7 +6,8 @@
 // In (RunReport): the files' names, the mesh as read and its welded view, the job (orientation
 // and slimming, core/orientation/oriented_slimming.h) and its figures (core/optimizer/slimming_figures.h: support
 // estimate, shape cost, budget; mm, mm², mm³, %). Out: text. write_report throws
-// std::runtime_error naming the file when it cannot be written. The keys are listed in
+// std::runtime_error naming the file when it cannot be written. The report also names the version
+// that made it and the settings asked for. The keys are listed in
 // docs/usage.md; a key's meaning never changes, new ones may be added.
 #pragma once
 
@@ -25,6 +26,7 @@ struct RunReport {
   const io::MeshFile* file = nullptr;
   const WeldedView* view = nullptr;
   const OrientedSlimming* job = nullptr;
+  const SlimmingOptions* options = nullptr;  // the settings asked for (the report lists those read)
   SlimmingFigures figures;
 };
 

@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
     const SlimmingResult& r = job.slimming;
     // The files get the input's own vertex list back, moved as the welded view moved.
     io::write_mesh(c.out, file, view.positions_to_input(file.surface.V, r.surface.V), {r.after.quality, r.after.risky});
-    cli::RunReport run{c.in, c.out, c.orient, &file, &view, &job, {}};
+    cli::RunReport run{c.in, c.out, c.orient, &file, &view, &job, &c.slimming, {}};
     run.figures = slimming_figures(job.posed, r, bbox_diagonal(view.surface.V));
     cli::print_summary(run);
     if (!c.report.empty()) cli::write_report(c.report, run);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 
+#include "core/platform/version.h"
 #include "filter_parts.h"
 
 namespace slim::plugin {
@@ -95,6 +96,7 @@ FilterOutcome run_filter(const FilterDefinition& filter, MeshDocument& md, const
       return outcome;
     }
     FilterRun run{log, progress, {}};
+    run.info(filter.name + ": support-slimming " + slim::version());  // which build made the result
     filter.apply(md, par, run);
     outcome.outputs = std::move(run.outputs);
   } catch (const FilterFailure& e) {

@@ -19,6 +19,7 @@
 #include "core/geometry/surface_distance.h"
 #include "core/support_model/support_model.h"
 #include "mesh_io/mesh_io.h"
+#include "support/project_version.h"
 #include "support/shapes.h"
 
 using namespace slim;
@@ -222,5 +223,38 @@ TEST(CliReport, AnUnwritableReportExitsWithOneLine) {
   EXPECT_NE(r.err.find("support-slim: cannot write the report"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(dir / "b.ply")) << "refused before the run: nothing written";
+  fs::remove_all(dir);
+}
+
+// The report names the build that made it (the version CMakeLists.txt declares, as --version
+// prints it) and the settings the run read.
+TEST(CliReport, NamesTheVersionAndTheSettings) {
+  const std::string version = test::project_version();
+  ASSERT_FALSE(version.empty());
+  const test::CliRun v = test::run_cli("--version");
+  EXPECT_EQ(v.exit_code, 0);
+  EXPECT_EQ(v.out, "support-slim " + version + "\n");
+
+  const fs::path dir = test::scratch();
+  const std::string base = "'" + test::sample_bunny_path() + "' -o '" + (dir / "b.ply").string() + "' --iterations 0 --quiet --report '";
+  ASSERT_EQ(test::run_cli(base + (dir / "a.json").string() + "' --angle 40 --dir 0,0,2 --max-creases 3 --allow-stretch --one-resolution").exit_code, 0);
+  ASSERT_EQ(test::run_cli(base + (dir / "p.json").string() + "' --method paper --resolution 20").exit_code, 0);
+  std::string a, p;
+  const std::map<std::string, double> an = read_numbers(dir / "a.json", a), pn = read_numbers(dir / "p.json", p);
+  for (const std::string& text : {a, p}) EXPECT_NE(text.find("\"version\": \"" + version + "\""), std::string::npos) << text;
+  EXPECT_NE(a.find("\"method\": \"coherent\""), std::string::npos) << a;
+  EXPECT_EQ(an.at("alpha_max_deg"), 40.0);
+  EXPECT_NE(a.find("\"print_direction_given\": [0, 0, 2]"), std::string::npos) << a;
+  EXPECT_EQ(an.at("max_creases_pct"), 3.0);
+  EXPECT_EQ(an.at("max_displacement_pct"), 1.5);
+  EXPECT_EQ(an.at("resolution_given"), 24.0);
+  EXPECT_NE(a.find("\"one_resolution\": true"), std::string::npos) << a;
+  EXPECT_NE(a.find("\"allow_stretch\": true"), std::string::npos) << a;
+  // The paper's method reads no limits and always lets the part stretch.
+  EXPECT_NE(p.find("\"method\": \"paper\""), std::string::npos) << p;
+  EXPECT_EQ(pn.at("resolution_given"), 20.0);
+  EXPECT_EQ(pn.at("max_creases_pct"), 0.0);
+  EXPECT_EQ(pn.at("min_saving_pct"), 0.0);
+  EXPECT_NE(p.find("\"allow_stretch\": true"), std::string::npos) << p;
   fs::remove_all(dir);
 }

@@ -7,6 +7,7 @@
 #include "core/print/overhang.h"
 #include "filter_checks.h"
 #include "harness.h"
+#include "support/project_version.h"
 #include "support/shapes.h"
 #include "vcg_adapters/surface_adapter.h"
 
@@ -126,6 +127,9 @@ TEST(Plugin, SupportSlimmingAddsASlimmedLayerAndLeavesTheInputAlone) {
   ASSERT_EQ(md.meshList.size(), 2);
   test::expect_slimmed_layer(*input, *md.mm(), original, params.getAbsPerc("plateTolerance"), h.logLines());
   EXPECT_FALSE(h.logLines().join("\n").contains("the mesh is open")) << h.logLines().join("\n").toStdString();
+  // The log's first line names the build that made the layer.
+  ASSERT_FALSE(h.logLines().isEmpty());
+  EXPECT_EQ(h.logLines().first().toStdString(), "Support Slimming: support-slimming " + test::project_version());
 }
 
 // An open mesh (a box with a 5 mm window in its side) is slimmed like any other, and the log says
