@@ -26,8 +26,14 @@ still risky; PLY), face colour its ramp (PLY, OFF, STL), and the face selection 
 faces (PLY). OUT is in the input's frame (no rescaling, no recentring), or with --orient in the
 print pose the search chose. See docs/files-and-attributes.md.
 
+The mesh is taken in millimetres at the size it will print (a file does not say its unit): a
+part under 5 mm or over 1 m across gets a warning, and --scale F scales IN first (OUT is then
+scaled too).
+
 options:
   -o, --output FILE        where to write the result (required)
+  --scale F                scale IN by F (> 0) about the origin first: 25.4 for inches,
+                           10 for centimetres, 1000 for metres                        [1]
   --angle DEG              self-supporting angle from the vertical, [0, 90)       [45]
   --dir X,Y,Z              print direction                                     [0,0,1]
   --plate-tolerance MM     faces this close to the lowest point rest on the plate
@@ -92,6 +98,13 @@ double at_least_zero(const std::string& flag, double v, const std::string& zero_
   return v;
 }
 
+double positive(const std::string& flag, double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  if (!(v > 0.0)) die(flag + " expects a value > 0, got " + text);
+  return v;
+}
+
 // A limit as the CLI and the dialog give it (creases, displacement): a percentage, 0 for no limit.
 std::optional<double> limit_pct(double pct) { return pct == 0.0 ? std::nullopt : std::optional<double>(pct); }
 
@@ -143,6 +156,7 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
       std::cout << "support-slim " << version() << "\n";
       std::exit(0);
     } else if (a == "-o" || a == "--output") c.out = value(i);
+    else if (a == "--scale") c.scale = positive(a, number(a, value(i)));
     else if (a == "--angle") o.print.alpha_max_deg = number(a, value(i));
     else if (a == "--dir") o.print.direction = vector3(a, value(i)), dir_given = true;
     else if (a == "--plate-tolerance") o.print.plate = PlateRule::within(number(a, value(i)));

@@ -20,6 +20,7 @@ struct CliOptions {
   std::string features_file;        // rigid features: face ids, one file
   std::string oriented_out;         // with --orient: the oriented part before slimming
   std::string report;               // --report: the figures as JSON
+  double scale = 1.0;               // --scale: IN's positions times this, first (> 0)
   bool features_from_mesh = false, quiet = false, orient = false;
   OrientationEffort effort = OrientationEffort::Normal;
   SlimmingOptions slimming;

@@ -13,6 +13,7 @@
 
 #include "core/optimizer/resolution_ladder.h"
 #include "core/platform/version.h"
+#include "core/print/print_size.h"
 
 namespace slim::cli {
 
@@ -127,6 +128,9 @@ void print_summary(const RunReport& run) {
   const bool orient = run.oriented;
   std::printf("support-slim: %s -> %s\n", run.in.c_str(), run.out.c_str());
   print_mesh_line(*run.file, *run.view);
+  if (run.scale != 1.0) std::printf("  scale           x %g (--scale), the result too\n", run.scale);
+  if (const auto warning = print_size_warning(run.view->surface.V))
+    std::printf("  units           %s\n", wrapped("WARNING: " + *warning + "; --scale F scales it first", 18).c_str());
   print_support(run.figures, orient);
   if (orient) {
     print_orientation(run.job->orientation, r);
@@ -158,7 +162,7 @@ namespace {
 
 // The settings the run read (the method applied: the paper's method has no limits), as keys of
 // the report; a limit that is off is 0, as the CLI takes it.
-std::string settings_json(const SlimmingOptions& asked) {
+std::string settings_json(const SlimmingOptions& asked, double scale) {
   const SlimmingOptions o = method_applied(asked);
   const Eigen::Vector3d& d = o.print.direction;
   std::ostringstream os;
@@ -170,7 +174,7 @@ std::string settings_json(const SlimmingOptions& asked) {
      << ",\n  \"max_creases_pct\": " << json_number(o.result.max_crease_share_pct.value_or(0.0))
      << ",\n  \"max_displacement_pct\": " << json_number(o.result.max_mean_displacement_pct.value_or(0.0))
      << ",\n  \"min_saving_pct\": " << json_number(o.result.min_support_saving_pct)
-     << ",\n  \"allow_stretch\": " << (o.hold_proportions ? "false" : "true");
+     << ",\n  \"allow_stretch\": " << (o.hold_proportions ? "false" : "true") << ",\n  \"scale\": " << json_number(scale);
   return os.str();
 }
 
@@ -187,7 +191,8 @@ void write_report(const std::string& path, const RunReport& run) {
                                  {"domain_tets", r.domain_tets}});
   std::ostringstream os;
   os << "{\n  \"version\": " << json_string(version()) << ",\n  \"input\": " << json_string(run.in)
-     << ",\n  \"output\": " << json_string(run.out) << (run.options ? settings_json(*run.options) : "") << ",\n  \"oriented\": " << (run.oriented ? "true" : "false") << ",\n  \"stop_reason\": " << json_string(r.stop_reason);
+     << ",\n  \"output\": " << json_string(run.out) << (run.options ? settings_json(*run.options, run.scale) : "")
+     << ",\n  \"oriented\": " << (run.oriented ? "true" : "false") << ",\n  \"stop_reason\": " << json_string(r.stop_reason);
   if (run.oriented) {
     const Eigen::Vector3d& d = run.job->orientation.best.direction;
     os << ",\n  \"print_direction\": [" << json_number(d.x()) << ", " << json_number(d.y()) << ", " << json_number(d.z())

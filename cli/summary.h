@@ -27,6 +27,7 @@ struct RunReport {
   const WeldedView* view = nullptr;
   const OrientedSlimming* job = nullptr;
   const SlimmingOptions* options = nullptr;  // the settings asked for (the report lists those read)
+  double scale = 1.0;                          // --scale, applied to the mesh as read
   SlimmingFigures figures;
 };
 

@@ -82,7 +82,8 @@ int main(int argc, char** argv) {
   check_files(c);
   WeldedView view;  // the surface the core computes on (core/geometry/welded_view.h)
   try {
-    const io::MeshFile file = io::read_mesh(c.in);
+    io::MeshFile file = io::read_mesh(c.in);
+    if (c.scale != 1.0) file.surface.V *= c.scale;  // --scale: the units fixed before anything reads them
     view = weld_coincident(file.surface);
     if (!c.features_file.empty()) c.slimming.rigid_features = cli::read_face_ids(c.features_file, view.surface.F.rows());
     if (c.features_from_mesh) {
@@ -94,7 +95,7 @@ int main(int argc, char** argv) {
     const SlimmingResult& r = job.slimming;
     // The files get the input's own vertex list back, moved as the welded view moved.
     io::write_mesh(c.out, file, view.positions_to_input(file.surface.V, r.surface.V), {r.after.quality, r.after.risky});
-    cli::RunReport run{c.in, c.out, c.orient, &file, &view, &job, &c.slimming, {}};
+    cli::RunReport run{c.in, c.out, c.orient, &file, &view, &job, &c.slimming, c.scale, {}};
     run.figures = slimming_figures(job.posed, r, bbox_diagonal(view.surface.V));
     cli::print_summary(run);
     if (!c.report.empty()) cli::write_report(c.report, run);

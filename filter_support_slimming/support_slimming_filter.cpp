@@ -7,6 +7,7 @@
 #include "core/optimizer/resolution_ladder.h"
 #include "core/optimizer/slimming_figures.h"
 #include "core/orientation/oriented_slimming.h"
+#include "core/print/print_size.h"
 
 namespace slim::plugin {
 
@@ -14,7 +15,7 @@ namespace slim::plugin {
 // 1280x1024 screen in MeshLab 2020.09. The details are in each parameter's help, which the
 // dialog's Help button shows.
 const char* const kSupportSlimmingInfo =
-    "Deforms the mesh, as rigidly as possible, so that it needs less support material when printed "
+    "Deforms the mesh (taken in mm, at print size) as rigidly as possible so that it needs less support when printed "
     "along the <i>print direction</i>. The result is a <b>new layer</b>; the input layer is not changed. "
     "The result keeps the input's vertices, their order and attributes, except: the still-risky faces "
     "are selected, face quality is <i>n&middot;d + sin(&alpha;<sub>max</sub>)</i> (negative: risky) and "
@@ -111,6 +112,7 @@ void log_slimming(FilterRun& run, const slim::SlimmingResult& r, const slim::Sli
                              f.extent_change_x_pct, f.extent_change_y_pct, f.extent_change_z_pct, f.height_change_pct,
                              f.affine_departure_pct, f.mean_displacement_mm, f.mean_displacement_pct, f.folded_faces));
   if (r.inside_out) run.warning(QString("Support Slimming: ") + kInsideOutNotice);
+
   if (f.open_edges > 0) run.warning(QString("Support Slimming: ") + slim::open_mesh_note(f.open_edges).c_str());
   for (const auto& [key, value] : slim::named_figures(f)) run.outputs[key] = value;
   run.outputs["risky_area_before"] = r.before.risky_area;
@@ -153,6 +155,9 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   if (orient) log_orientation(run, "Support Slimming", job.orientation, false);  // slimming notes it below
 
   log_slimming(run, r, slim::slimming_figures(job.posed, r, slim::bbox_diagonal(layer.view.surface.V)), orient);
+  if (const auto size = slim::print_size_warning(layer.view.surface.V))
+    run.warning(QString("Support Slimming: ") + size->c_str() +
+                "; scale it first with Filters > Normals, Curvatures and Orientation > Transform: Scale, Normalize");
 }
 
 }  // namespace slim::plugin

@@ -248,6 +248,7 @@ TEST(CliReport, NamesTheVersionAndTheSettings) {
   EXPECT_EQ(an.at("max_creases_pct"), 3.0);
   EXPECT_EQ(an.at("max_displacement_pct"), 1.5);
   EXPECT_EQ(an.at("resolution_given"), 24.0);
+  EXPECT_EQ(an.at("scale"), 1.0);
   EXPECT_NE(a.find("\"one_resolution\": true"), std::string::npos) << a;
   EXPECT_NE(a.find("\"allow_stretch\": true"), std::string::npos) << a;
   // The paper's method reads no limits and always lets the part stretch.

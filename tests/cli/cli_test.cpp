@@ -177,6 +177,8 @@ TEST(Cli, BadValuesAndPathsAreRefusedBeforeAnyWork) {
   for (const auto& [args, reason] : std::vector<std::pair<std::string, std::string>>{
            {bunny + out + " --max-deviation -1", "--max-deviation expects a value >= 0 (0: no budget), got -1"},
            {bunny + out + " --threads -3", "--threads expects a value >= 0 (0: every core), got -3"},
+           {bunny + out + " --scale 0", "--scale expects a value > 0, got 0"},
+           {bunny + out + " --scale -2", "--scale expects a value > 0, got -2"},
            {bunny + " -o '" + (dir / "missing" / "o.ply").string() + "'", "its folder " + (dir / "missing").string() + " does not exist"},
            {bunny + " -o '" + dir.string() + "'", "it is a folder"},
            {bunny + " -o '" + (dir / "o.3mf").string() + "'", "unknown mesh format"},
@@ -190,6 +192,28 @@ TEST(Cli, BadValuesAndPathsAreRefusedBeforeAnyWork) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(dir / "o.ply")) << args;
   }
+  fs::remove_all(dir);
+}
+
+// The mesh is taken in millimetres at print size: a 2 mm part gets a warning naming the likely
+// units, and --scale fixes it (the result is written at the new size).
+TEST(Cli, ATinyPartIsWarnedAboutAndScaleFixesIt) {
+  const fs::path dir = scratch();
+  const Surface tiny = test::transformed(test::t_shape(), 0.05 * Eigen::Matrix3d::Identity());  // 2.5 mm across
+  io::save_surface((dir / "tiny.ply").string(), tiny);
+  const std::string in = "'" + (dir / "tiny.ply").string() + "' -o '";
+  const CliRun warned = run_cli(in + (dir / "a.ply").string() + "' --iterations 0 --quiet");
+  ASSERT_EQ(warned.exit_code, 0) << warned.err;
+  EXPECT_NE(warned.out.find("units           WARNING: the part is"), std::string::npos) << warned.out;
+  EXPECT_NE(warned.out.find("inches (x 25.4)"), std::string::npos) << warned.out;
+
+  const CliRun scaled = run_cli(in + (dir / "b.ply").string() + "' --scale 25.4 --iterations 0 --quiet");
+  ASSERT_EQ(scaled.exit_code, 0) << scaled.err;
+  EXPECT_EQ(scaled.out.find("WARNING"), std::string::npos) << scaled.out;
+  EXPECT_NE(scaled.out.find("scale           x 25.4 (--scale), the result too"), std::string::npos) << scaled.out;
+  const Surface out = io::load_surface((dir / "b.ply").string());
+  ASSERT_EQ(out.V.rows(), tiny.V.rows());
+  EXPECT_LE((out.V - 25.4 * tiny.V).cwiseAbs().maxCoeff(), 1e-5 * 25.4 * tiny.V.cwiseAbs().maxCoeff());
   fs::remove_all(dir);
 }
 

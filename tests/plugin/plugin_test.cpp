@@ -132,6 +132,20 @@ TEST(Plugin, SupportSlimmingAddsASlimmedLayerAndLeavesTheInputAlone) {
   EXPECT_EQ(h.logLines().first().toStdString(), "Support Slimming: support-slimming " + test::project_version());
 }
 
+// A 2.5 mm part is most likely in another unit: the log says so and how to scale it.
+TEST(Plugin, SupportSlimmingWarnsOfAPartTooSmallForMillimetres) {
+  PluginHarness h;
+  ASSERT_TRUE(h.ok()) << h.error().toStdString();
+  MeshDocument md;
+  test::add_layer(md, test::transformed(test::t_shape(), 0.05 * Eigen::Matrix3d::Identity()), "tiny T");
+  RichParameterList params = h.defaults(kSlimming, md);
+  params.setValue("maxIterations", IntValue(0));
+  ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
+  const QString log = h.logLines().join("\n");
+  EXPECT_TRUE(log.contains("Support Slimming: the part is 2.5 mm across at its largest, under 5 mm")) << log.toStdString();
+  EXPECT_TRUE(log.contains("Transform: Scale, Normalize")) << log.toStdString();
+}
+
 // An open mesh (a box with a 5 mm window in its side) is slimmed like any other, and the log says
 // what slicers do with its hole, which the support estimate counts.
 TEST(Plugin, SupportSlimmingSaysWhatSlicersDoWithAnOpenMesh) {
