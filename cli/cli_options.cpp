@@ -26,6 +26,10 @@ still risky; PLY), face colour its ramp (PLY, OFF, STL), and the face selection 
 faces (PLY). OUT is in the input's frame (no rescaling, no recentring), or with --orient in the
 print pose the search chose. See docs/files-and-attributes.md.
 
+Exit status: 0 done (also when the part comes back unchanged), 1 the run failed, 2 bad usage (a
+flag, a value or an output path), 3 a bad input file (missing, unreadable, not a mesh, or a mesh
+the run refuses).
+
 The mesh is taken in millimetres at the size it will print (a file does not say its unit): a
 part under 5 mm or over 1 m across gets a warning, and --scale F scales IN first (OUT is then
 scaled too).
@@ -134,9 +138,9 @@ std::vector<bool> read_face_ids(const std::string& path, long long faces) {
 }
 
 
-[[noreturn]] void die(const std::string& reason) {
+[[noreturn]] void die(const std::string& reason, int code) {
   std::cerr << "support-slim: " << reason << "\n";
-  std::exit(1);
+  std::exit(code);
 }
 
 CliOptions parse_arguments(const std::vector<std::string>& args) {

@@ -3,8 +3,8 @@
 //   CliOptions c = parse_arguments(args);   // args: argv[1..]
 //
 // In: the arguments as given. Out: the files, the switches and the core's SlimmingOptions.
-// A bad argument ends the program through die(): exit status 1 and one line on stderr naming the
-// flag and what it expects; -h prints the usage and exits 0.
+// A bad argument ends the program through die(): exit status kExitUsage and one line on stderr
+// naming the flag and what it expects; -h prints the usage and exits 0.
 #pragma once
 
 #include <string>
@@ -26,7 +26,14 @@ struct CliOptions {
   SlimmingOptions slimming;
 };
 
-[[noreturn]] void die(const std::string& reason);
+// The exit codes (docs/usage.md). Bad usage: an unknown flag, a value out of its range, an output
+// path that cannot be written; bad input file: the mesh is missing, unreadable, not a mesh of a
+// known format, or one the run refuses (no faces, non-finite coordinates, faces not consistently
+// oriented, zero extent); a failed run: anything after that (the memory guard, a write error).
+inline constexpr int kExitRunFailed = 1, kExitUsage = 2, kExitBadInputFile = 3;
+
+// One line on stderr ("support-slim: " and the reason), then exit with `code`.
+[[noreturn]] void die(const std::string& reason, int code = kExitUsage);
 
 CliOptions parse_arguments(const std::vector<std::string>& args);
 

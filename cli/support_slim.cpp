@@ -1,5 +1,6 @@
 // support-slim IN -o OUT [options]: Support Slimming without MeshLab. Thin: parse, load, call the
-// core, save, summarise. Exits 0 on success, 1 with a one-line reason otherwise.
+// core, save, summarise. Exits 0 on success, otherwise with a one-line reason and the exit code
+// of cli_options.h (bad usage, bad input file, failed run).
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -62,17 +63,43 @@ void check_output(const std::string& path, const std::string& what, bool mesh) {
 
 void check_files(const cli::CliOptions& c) {
   std::error_code error;
-  if (!std::filesystem::exists(c.in, error)) cli::die("cannot read " + c.in + ": no such file");
-  if (std::filesystem::is_directory(c.in, error)) cli::die("cannot read " + c.in + ": it is a folder, not a mesh file");
-  if (access(c.in.c_str(), R_OK) != 0) cli::die("cannot read " + c.in + ": " + std::strerror(errno));
+  const int bad = cli::kExitBadInputFile;
+  if (!std::filesystem::exists(c.in, error)) cli::die("cannot read " + c.in + ": no such file", bad);
+  if (std::filesystem::is_directory(c.in, error)) cli::die("cannot read " + c.in + ": it is a folder, not a mesh file", bad);
+  if (access(c.in.c_str(), R_OK) != 0) cli::die("cannot read " + c.in + ": " + std::strerror(errno), bad);
   try {
     io::format_of(c.in);
   } catch (const std::exception& e) {
-    cli::die(e.what());
+    cli::die(e.what(), bad);
   }
   check_output(c.out, "the result", true);
   check_output(c.oriented_out, "the oriented part", true);
   check_output(c.report, "the report", false);
+}
+
+// The mesh as read, scaled and welded, and the options checked against it: a bad file exits
+// kExitBadInputFile, a bad option kExitUsage, each before any work.
+io::MeshFile read_input(cli::CliOptions& c, WeldedView& view) {
+  io::MeshFile file;
+  try {
+    file = io::read_mesh(c.in);
+    if (c.scale != 1.0) file.surface.V *= c.scale;  // --scale: the units fixed before anything reads them
+    view = weld_coincident(file.surface);
+    check_slimming_input(view.surface);
+  } catch (const std::exception& e) {
+    cli::die(e.what() + view.vertex_number_note(e.what()), cli::kExitBadInputFile);
+  }
+  if (!c.features_file.empty()) c.slimming.rigid_features = cli::read_face_ids(c.features_file, view.surface.F.rows());
+  if (c.features_from_mesh) {
+    if (file.face.selected.empty()) cli::die(c.in + " carries no face selection to use as rigid features");
+    c.slimming.rigid_features = file.face.selected;
+  }
+  try {
+    validate_slimming_options(c.slimming, static_cast<long>(view.surface.F.rows()));
+  } catch (const std::exception& e) {
+    cli::die(e.what());
+  }
+  return file;
 }
 
 }  // namespace
@@ -81,15 +108,8 @@ int main(int argc, char** argv) {
   cli::CliOptions c = cli::parse_arguments(std::vector<std::string>(argv + 1, argv + argc));
   check_files(c);
   WeldedView view;  // the surface the core computes on (core/geometry/welded_view.h)
+  const io::MeshFile file = read_input(c, view);
   try {
-    io::MeshFile file = io::read_mesh(c.in);
-    if (c.scale != 1.0) file.surface.V *= c.scale;  // --scale: the units fixed before anything reads them
-    view = weld_coincident(file.surface);
-    if (!c.features_file.empty()) c.slimming.rigid_features = cli::read_face_ids(c.features_file, view.surface.F.rows());
-    if (c.features_from_mesh) {
-      if (file.face.selected.empty()) cli::die(c.in + " carries no face selection to use as rigid features");
-      c.slimming.rigid_features = file.face.selected;
-    }
     if (!c.quiet) c.slimming.progress = print_progress;
     const OrientedSlimming job = run_job(c, file, view);
     const SlimmingResult& r = job.slimming;
@@ -100,9 +120,9 @@ int main(int argc, char** argv) {
     cli::print_summary(run);
     if (!c.report.empty()) cli::write_report(c.report, run);
   } catch (const std::exception& e) {
-    cli::die(e.what() + view.vertex_number_note(e.what()));
+    cli::die(e.what() + view.vertex_number_note(e.what()), cli::kExitRunFailed);
   } catch (...) {
-    cli::die("unexpected internal error (not a std::exception)");
+    cli::die("unexpected internal error (not a std::exception)", cli::kExitRunFailed);
   }
   return 0;
 }

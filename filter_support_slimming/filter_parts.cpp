@@ -42,7 +42,7 @@ slim::SlimmingOptions slimming_options(const RichParameterList& par) {
   o.method = par.getEnum("method") == 1 ? slim::SlimmingMethod::Paper : slim::SlimmingMethod::Coherent;
   o.steps.max_iterations = par.getInt("maxIterations");
   const float budget = par.getFloat("maxDeviation");
-  if (!(budget >= 0.0f))  // a typo's minus sign must not turn the budget off
+  if (budget < 0.0f)  // a typo's minus sign must not turn the budget off (NaN: the core says "finite")
     throw FilterFailure(QString("the deviation budget must be >= 0 % (0: no budget), got %1").arg(double(budget)));
   o.budget = slim::DeviationBudget::from_percent(budget);
   o.steps.max_k = par.getInt("maxK");

@@ -200,7 +200,7 @@ TEST_P(BadFileCli, IsRefusedInOneLineNamingTheFile) {
   const fs::path in = dir / (f.name + "." + f.extension), out = dir / (f.name + "_out.ply");
   std::ofstream(in, std::ios::binary) << f.bytes;
   const test::CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "' --quiet", 1024 * 1024);
-  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;  // a bad input file
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;  // exactly one line
   EXPECT_EQ(r.err.rfind("support-slim: ", 0), 0u) << r.err;
   EXPECT_TRUE(mentions(r.err, in.string())) << r.err;

@@ -219,7 +219,7 @@ TEST(CliReport, AnUnwritableReportExitsWithOneLine) {
   const fs::path dir = test::scratch();
   const test::CliRun r = test::run_cli("'" + test::sample_bunny_path() + "' -o '" + (dir / "b.ply").string() +
                                        "' --iterations 0 --report '" + (dir / "no/such/dir/r.json").string() + "' --quiet");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // bad usage: an output path that cannot be written
   EXPECT_NE(r.err.find("support-slim: cannot write the report"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(dir / "b.ply")) << "refused before the run: nothing written";

@@ -65,7 +65,7 @@ TEST(Cli, FeaturesFileIsRead) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   std::ofstream(ids) << "0 99999999\n";
   r = run_cli("'" + test::sample_bunny_path() + "' -o '" + out.string() + "' --features '" + ids.string() + "' --quiet");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // bad usage
   EXPECT_NE(r.err.find("face 99999999"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
@@ -146,7 +146,7 @@ TEST(Cli, OrientOptionsAreChecked) {
            {"--method paper --allow-stretch", "the paper's method lets the part stretch"},
            {"--method paper --max-displacement 2", "the paper's method lets the part stretch"}}) {
     const CliRun r = run_cli(bunny + args + " --quiet");
-    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_EQ(r.exit_code, 2) << args;  // bad usage
     EXPECT_NE(r.err.find(reason), std::string::npos) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
@@ -159,7 +159,7 @@ TEST(Cli, ANegativePlateToleranceIsRefused) {
   const std::string bunny = "'" + test::sample_bunny_path() + "' -o '" + (dir / "o.ply").string() + "' ";
   for (const std::string& args : {std::string("--plate-tolerance -1"), std::string("--orient --plate-tolerance -0.5")}) {
     const CliRun r = run_cli(bunny + args + " --quiet");
-    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_EQ(r.exit_code, 2) << args;  // bad usage
     EXPECT_NE(r.err.find("the build plate tolerance must be >= 0 mm"), std::string::npos) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(dir / "o.ply")) << args;
@@ -169,24 +169,24 @@ TEST(Cli, ANegativePlateToleranceIsRefused) {
 
 // A typo's minus sign, a missing folder, a folder as the input or an unknown format is refused
 // before any work: one line naming the reason, no progress printed (progress starts with the
-// first stage), no file written.
+// first stage), no file written, and the exit code says whose fault: 2 the usage, 3 the input.
 TEST(Cli, BadValuesAndPathsAreRefusedBeforeAnyWork) {
   const fs::path dir = scratch();
   const std::string bunny = "'" + test::sample_bunny_path() + "'";
   const std::string out = " -o '" + (dir / "o.ply").string() + "'";
-  for (const auto& [args, reason] : std::vector<std::pair<std::string, std::string>>{
-           {bunny + out + " --max-deviation -1", "--max-deviation expects a value >= 0 (0: no budget), got -1"},
-           {bunny + out + " --threads -3", "--threads expects a value >= 0 (0: every core), got -3"},
-           {bunny + out + " --scale 0", "--scale expects a value > 0, got 0"},
-           {bunny + out + " --scale -2", "--scale expects a value > 0, got -2"},
-           {bunny + " -o '" + (dir / "missing" / "o.ply").string() + "'", "its folder " + (dir / "missing").string() + " does not exist"},
-           {bunny + " -o '" + dir.string() + "'", "it is a folder"},
-           {bunny + " -o '" + (dir / "o.3mf").string() + "'", "unknown mesh format"},
-           {bunny + out + " --orient --oriented-output '" + (dir / "missing" / "p.ply").string() + "'", "cannot write the oriented part"},
-           {"'" + dir.string() + "'" + out, "it is a folder, not a mesh file"},
-           {"'" + (dir / "missing.ply").string() + "'" + out, "no such file"}}) {
+  for (const auto& [args, reason, code] : std::vector<std::tuple<std::string, std::string, int>>{
+           {bunny + out + " --max-deviation -1", "--max-deviation expects a value >= 0 (0: no budget), got -1", 2},
+           {bunny + out + " --threads -3", "--threads expects a value >= 0 (0: every core), got -3", 2},
+           {bunny + out + " --scale 0", "--scale expects a value > 0, got 0", 2},
+           {bunny + out + " --scale -2", "--scale expects a value > 0, got -2", 2},
+           {bunny + " -o '" + (dir / "missing" / "o.ply").string() + "'", "its folder " + (dir / "missing").string() + " does not exist", 2},
+           {bunny + " -o '" + dir.string() + "'", "it is a folder", 2},
+           {bunny + " -o '" + (dir / "o.3mf").string() + "'", "unknown mesh format", 2},
+           {bunny + out + " --orient --oriented-output '" + (dir / "missing" / "p.ply").string() + "'", "cannot write the oriented part", 2},
+           {"'" + dir.string() + "'" + out, "it is a folder, not a mesh file", 3},
+           {"'" + (dir / "missing.ply").string() + "'" + out, "no such file", 3}}) {
     const CliRun r = run_cli(args);
-    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_EQ(r.exit_code, code) << args;  // 2: bad usage, 3: bad input file
     EXPECT_NE(r.err.find(reason), std::string::npos) << args << ": " << r.err;
     EXPECT_EQ(r.err.rfind("support-slim: ", 0), 0u) << args << ": " << r.err;  // no progress before it
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
@@ -221,15 +221,16 @@ TEST(Cli, BadInputExitsNonZeroWithOneLine) {
   const fs::path dir = scratch();
   const std::string bunny = "'" + test::sample_bunny_path() + "'";
   const std::string out = " -o '" + (dir / "o.ply").string() + "'";
-  for (const std::string& args : {std::string(""), bunny, bunny + out + " --angle 95", bunny + out + " --angle abc",
-                                 bunny + out + " --dir 0,0,0", bunny + out + " --domain cubes",
-                                 bunny + out + " --max-creases -1", bunny + out + " --max-creases 2 --method paper",
-                                 bunny + out + " --min-saving -1", bunny + out + " --min-saving 100",
-                                 bunny + out + " --min-saving 3 --method paper",
-                                 "'" + (dir / "missing.ply").string() + "'" + out, bunny + out + " --resolution 100000",
-                                 bunny + out + " --frobnicate"}) {
+  const std::string missing = "'" + (dir / "missing.ply").string() + "'" + out;
+  for (const auto& [args, code] : std::vector<std::pair<std::string, int>>{
+           {"", 2}, {bunny, 2}, {bunny + out + " --angle 95", 2}, {bunny + out + " --angle abc", 2},
+           {bunny + out + " --dir 0,0,0", 2}, {bunny + out + " --domain cubes", 2}, {bunny + out + " --max-creases -1", 2},
+           {bunny + out + " --max-creases 2 --method paper", 2}, {bunny + out + " --min-saving -1", 2},
+           {bunny + out + " --min-saving 100", 2}, {bunny + out + " --min-saving 3 --method paper", 2}, {missing, 3},
+           {bunny + out + " --frobnicate", 2},
+           {bunny + out + " --resolution 100000", 1}}) {  // the run's memory guard: a failed run
     const CliRun r = run_cli(args + " --quiet");
-    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_EQ(r.exit_code, code) << args << ": " << r.err;
     ASSERT_FALSE(r.err.empty()) << args;
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << args << ": " << r.err;  // exactly one line
     EXPECT_EQ(r.err.rfind("support-slim: ", 0), 0u) << r.err;
@@ -266,7 +267,8 @@ class BadInputCli : public ::testing::TestWithParam<test::BadInput> {};
 }  // namespace
 
 // The bad-input catalogue through the CLI: every case as a PLY file (NaN and all) and flags. A
-// refusal is exit code 1 and one line naming the reason; a success writes a sane mesh.
+// refusal is one line naming the reason, exit code 2 for a bad setting, 3 for a bad mesh, 1 for
+// one the run makes; a success writes a sane mesh.
 TEST_P(BadInputCli, WritesASaneMeshOrExitsWithOneLine) {
   const test::BadInput& c = GetParam();
   const fs::path dir = scratch();
@@ -274,7 +276,20 @@ TEST_P(BadInputCli, WritesASaneMeshOrExitsWithOneLine) {
   test::write_ascii_ply(in.string(), c.surface);
   const CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "'" + cli_flags(c, dir) + " --quiet");
   if (!c.refusal.empty()) {
-    EXPECT_EQ(r.exit_code, 1) << c.name << ": " << r.out;
+    // As the core's own checks classify the case: 2 for a bad setting, 3 for a mesh the run
+    // refuses, otherwise 1 (a refusal in the run: TetGen's, the memory guard's).
+    auto refuses = [](const auto& check) {
+      try {
+        check();
+      } catch (const std::invalid_argument&) {
+        return true;
+      }
+      return false;
+    };
+    const int expected = refuses([&] { validate_slimming_options(c.options, static_cast<long>(c.surface.F.rows())); }) ? 2
+                         : refuses([&] { check_slimming_input(c.surface); })                                          ? 3
+                                                                                                                       : 1;
+    EXPECT_EQ(r.exit_code, expected) << c.name << ": " << r.err;
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;  // exactly one line
     EXPECT_EQ(r.err.rfind("support-slim: ", 0), 0u) << r.err;
     // A NaN setting never reaches the core: the flag's own parser names it.

@@ -292,17 +292,25 @@ SlimmingResult slim_on_ladder(const CheckedSurface& checked, const SlimmingOptio
 
 }  // namespace
 
-SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& options) {
+EdgeTopology check_slimming_input(const Surface& input) {
   if (input.F.rows() == 0) throw std::invalid_argument("the mesh has no faces: Support Slimming needs a triangle mesh");
+  check_surface(input);
+  // The overhang rule reads the outside from the normals. Faces that disagree along shared edges
+  // leave no consistent outside: refuse, rather than bend the part to fix overhangs that are not
+  // there. A closed mesh that is inside out is unambiguous: the run works on it turned over.
+  EdgeTopology edges = edge_topology(input);
+  require_consistent_orientation(edges);
+  if (!(bbox_diagonal(input.V) > 0.0))
+    throw std::invalid_argument("the mesh has zero extent (all its vertices coincide), so there is no shape to "
+                                "reshape; check the file and its units");
+  return edges;
+}
+
+SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& options) {
+  const EdgeTopology edges = check_slimming_input(input);
   const CheckedSurface checked(input);
   validate_slimming_options(options, static_cast<long>(input.F.rows()));
   const SlimmingOptions o = method_applied(options);
-  // The overhang rule reads the outside from the normals. Faces that disagree along shared edges
-  // leave no consistent outside: refuse, rather than bend the part to fix overhangs that are not
-  // there. A closed mesh that is inside out is unambiguous: work on it turned over, and say so in
-  // the result.
-  const EdgeTopology edges = edge_topology(input);
-  require_consistent_orientation(edges);
   SlimmingResult r;
   if (!inside_out(input, edges)) {
     r = slim_on_ladder(checked, o);

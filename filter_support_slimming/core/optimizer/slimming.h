@@ -49,4 +49,10 @@ namespace slim {
 // computed turned over (SlimmingResult::inside_out).
 SlimmingResult slim_supports(const Surface& input, const SlimmingOptions& options = {});
 
+// The mesh refusals of slim_supports, on their own, so that a caller can tell a bad mesh from bad
+// options or a failed run before any work: no faces, a face indexing outside the vertices, a
+// non-finite coordinate (check_surface), faces not consistently oriented, or zero extent. Throws
+// std::invalid_argument with the reason; returns the mesh's edge topology.
+EdgeTopology check_slimming_input(const Surface& input);
+
 }  // namespace slim

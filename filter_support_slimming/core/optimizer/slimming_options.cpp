@@ -84,6 +84,7 @@ void allow_stretch(SlimmingOptions& o) {
 }
 
 void validate_slimming_options(const SlimmingOptions& o, long faces) {
+  print_rule(o.print, 1.0);  // the direction, the angle and the plate tolerance (any part size)
   if (o.steps.max_iterations < 0) throw std::invalid_argument("the iteration limit must be 0 or more");
   if (o.resolution < 1) throw std::invalid_argument("the voxel resolution must be at least 1 cell");
   validate_steps(o.steps);

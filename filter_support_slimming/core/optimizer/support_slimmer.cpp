@@ -60,10 +60,7 @@ void require_optimizer_memory(const TetMesh& domain, const SlimmingOptions& o) {
 
 SlimmingRule slimming_rule(const Surface& input, const SlimmingOptions& o) {
   SlimmingRule rule;
-  rule.diagonal_mm = bbox_diagonal(input.V);
-  if (!(rule.diagonal_mm > 0.0))
-    throw std::invalid_argument("the mesh has zero extent (all its vertices coincide), so there is no shape to "
-                                "reshape; check the file and its units");
+  rule.diagonal_mm = bbox_diagonal(input.V);  // > 0: check_slimming_input (slimming.h) refused a point
   rule.print = print_rule(o.print, rule.diagonal_mm);
   rule.budget_mm = o.budget.mm(rule.diagonal_mm);
   return rule;

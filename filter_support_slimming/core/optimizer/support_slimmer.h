@@ -52,7 +52,8 @@ namespace slim {
 
 // What a run derives from its input and options, once for every rung: the input's bounding-box
 // diagonal (mm, > 0), the print rule resolved for it, and the deviation budget in mm (none: no
-// budget). Throws std::invalid_argument for a part with no extent or a bad print setup.
+// budget). Throws std::invalid_argument for a bad print setup (slim_supports refused a part with no
+// extent before: check_slimming_input, slimming.h).
 struct SlimmingRule {
   double diagonal_mm = 0.0;
   PrintRule print;
