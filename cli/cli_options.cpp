@@ -74,6 +74,8 @@ options:
   --report FILE.json       also write every figure of the summary as JSON (docs/usage.md)
   --threads N              OpenMP threads (the result does not depend on it)
   --quiet                  no progress on stderr
+  --verbose                the run's internals in the summary too: the proxies, the domain and
+                           solver, each resolution's result, the orientation's best poses
   --version                the version, and exit
   -h, --help               this text
 )";
@@ -197,6 +199,7 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
     else if (a == "--report") c.report = value(i);
     else if (a == "--threads") o.threads = static_cast<int>(at_least_zero(a, integer(a, value(i)), " (0: every core)"));
     else if (a == "--quiet") c.quiet = true;
+    else if (a == "--verbose") c.verbose = true;
     else if (!a.empty() && a[0] == '-') die("unknown option " + a + " (see --help)");
     else if (c.in.empty()) c.in = a;
     else die("more than one input mesh given: " + c.in + " and " + a);

@@ -21,7 +21,7 @@ struct CliOptions {
   std::string oriented_out;         // with --orient: the oriented part before slimming
   std::string report;               // --report: the figures as JSON
   double scale = 1.0;               // --scale: IN's positions times this, first (> 0)
-  bool features_from_mesh = false, quiet = false, orient = false;
+  bool features_from_mesh = false, quiet = false, orient = false, verbose = false;
   OrientationEffort effort = OrientationEffort::Normal;
   SlimmingOptions slimming;
 };

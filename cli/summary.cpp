@@ -49,11 +49,17 @@ void print_mesh_line(const io::MeshFile& file, const WeldedView& view) {
 }
 
 
-void print_orientation(const OrientationResult& orientation, const SlimmingResult& r) {
+// The pose the search chose, in one line.
+void print_orientation(const OrientationResult& orientation) {
   const OrientationCandidate& best = orientation.best;
   const double turn = std::acos(std::clamp(best.direction.z(), -1.0, 1.0)) * 180.0 / M_PI;
   std::printf("  orientation     print direction (%.4f, %.4f, %.4f) of the input, turned %.1f deg; %d directions in %.2f s\n",
               best.direction.x(), best.direction.y(), best.direction.z(), turn, orientation.candidates, orientation.seconds);
+}
+
+// How the search chose it (--verbose): the model's estimates, the proxies, the best poses.
+void print_orientation_details(const OrientationResult& orientation, const SlimmingResult& r) {
+  const OrientationCandidate& best = orientation.best;
   if (orientation.as_given.support_estimate && best.support_estimate)
     std::printf("  support model   %.6g (as given) -> %.6g (oriented) mm^3, the support model's choice of pose\n",
                 *orientation.as_given.support_estimate, *best.support_estimate);
@@ -123,39 +129,66 @@ std::string json_string(const std::string& text) {
 
 }  // namespace
 
-void print_summary(const RunReport& run) {
+// The verdict, on the summary's first line: what the run did to the support, or why the part
+// came back unchanged.
+void print_verdict(const RunReport& run) {
   const SlimmingResult& r = run.job->slimming;
-  const bool orient = run.oriented;
-  std::printf("support-slim: %s -> %s\n", run.in.c_str(), run.out.c_str());
-  print_mesh_line(*run.file, *run.view);
-  if (run.scale != 1.0) std::printf("  scale           x %g (--scale), the result too\n", run.scale);
-  if (const auto warning = print_size_warning(run.view->surface.V))
-    std::printf("  units           %s\n", wrapped("WARNING: " + *warning + "; --scale F scales it first", 18).c_str());
-  print_support(run.figures, orient);
-  if (orient) {
-    print_orientation(run.job->orientation, r);
+  const SlimmingFigures& f = run.figures;
+  char text[160];
+  std::string what = run.oriented ? "turned into the print pose; " : "";
+  if (r.iterations == 0) {
+    what += "returned unchanged: " + r.stop_reason;
+  } else if (f.support_estimate_before_mm3 > 0.0) {
+    std::snprintf(text, sizeof text, "support %.4g -> %.4g mm^3 (%+.1f%%, the support model's estimate)",
+                  f.support_estimate_before_mm3, f.support_estimate_after_mm3, f.support_change_pct);
+    what += text;
+  } else {  // the paper's method is judged by its proxies
+    std::snprintf(text, sizeof text, "risky area %.4g -> %.4g mm^2", r.before.risky_area, r.after.risky_area);
+    what += text;
+  }
+  std::printf("support-slim: %s -> %s: %s\n", run.in.c_str(), run.out.c_str(), what.c_str());  // one line, however long
+}
+
+// The run's internals, for --verbose: the proxies, the domain and the solver, the ladder.
+void print_internals(const RunReport& run) {
+  const SlimmingResult& r = run.job->slimming;
+  if (run.oriented) {
+    print_orientation_details(run.job->orientation, r);
   } else {
     std::printf("  support proxy   %.6g -> %.6g mm^3 (risky faces' footprint x height above the plate)\n",
                 r.before.shadow_volume, r.after.shadow_volume);
   }
   const IterationStats& chosen = r.history[static_cast<size_t>(r.iterations)];  // [0] is the input
-  std::printf("  risky area      %.6g -> %.6g mm^2  (%.2f%% -> %.2f%% of the surface, %.1f%% less)\n",
-              r.before.risky_area, r.after.risky_area, 100 * r.before.risky_share(), 100 * r.after.risky_share(),
-              r.before.risky_area > 0 ? 100 * (1 - r.after.risky_area / r.before.risky_area) : 0.0);
-  std::printf("  iterations      %d in %.2f s (%s)\n", r.iterations, r.seconds, r.stop_reason.c_str());
-  std::printf("  displacement    max %.4g mm, mean %.4g mm%s\n", run.figures.max_displacement_mm, run.figures.mean_displacement_mm,
-              orient ? " (the deformation alone, in the print pose)" : "");
   std::printf("  volume          %.6g -> %.6g mm^3 (%+.2f%%)\n", run.figures.volume_before_mm3, run.figures.volume_after_mm3,
               run.figures.volume_change_pct);
   std::printf("  AE              %.2f%%   inverted tets %d\n", 100 * chosen.approximation_error, chosen.inverted_tets);
   std::printf("  domain          %d vertices, %d tets; solver %s\n", r.domain_vertices, r.domain_tets,
               r.solver_backend.empty() ? "none (no iteration ran)" : r.solver_backend.c_str());
   std::printf("  resolution      %s\n", wrapped(ladder_line(r), 18).c_str());
+}
+
+void print_summary(const RunReport& run, bool verbose) {
+  const SlimmingResult& r = run.job->slimming;
+  const bool orient = run.oriented;
+  print_verdict(run);
+  print_shape_cost(run.figures, orient);
+  if (const auto warning = print_size_warning(run.view->surface.V))
+    std::printf("  units           %s\n", wrapped("WARNING: " + *warning + "; --scale F scales it first", 18).c_str());
+  if (run.scale != 1.0) std::printf("  scale           x %g (--scale), the result too\n", run.scale);
+  print_mesh_line(*run.file, *run.view);
+  print_support(run.figures, orient);
+  if (orient) print_orientation(run.job->orientation);
+  std::printf("  risky area      %.6g -> %.6g mm^2  (%.2f%% -> %.2f%% of the surface, %.1f%% less)\n",
+              r.before.risky_area, r.after.risky_area, 100 * r.before.risky_share(), 100 * r.after.risky_share(),
+              r.before.risky_area > 0 ? 100 * (1 - r.after.risky_area / r.before.risky_area) : 0.0);
+  std::printf("  iterations      %d in %.2f s (%s)\n", r.iterations, r.seconds, r.stop_reason.c_str());
+  std::printf("  displacement    max %.4g mm, mean %.4g mm%s\n", run.figures.max_displacement_mm, run.figures.mean_displacement_mm,
+              orient ? " (the deformation alone, in the print pose)" : "");
   if (r.inside_out)
     std::printf("  note            the input is inside out (every normal points inwards): it was computed turned\n"
                 "                  over, and %s keeps the input's face orientation\n", run.out.c_str());
   if (run.figures.open_edges > 0) std::printf("  note            %s\n", wrapped(open_mesh_note(run.figures.open_edges), 18).c_str());
-  print_shape_cost(run.figures, orient);
+  if (verbose) print_internals(run);
 }
 
 namespace {
@@ -192,7 +225,9 @@ void write_report(const std::string& path, const RunReport& run) {
   std::ostringstream os;
   os << "{\n  \"version\": " << json_string(version()) << ",\n  \"input\": " << json_string(run.in)
      << ",\n  \"output\": " << json_string(run.out) << (run.options ? settings_json(*run.options, run.scale) : "")
-     << ",\n  \"oriented\": " << (run.oriented ? "true" : "false") << ",\n  \"stop_reason\": " << json_string(r.stop_reason);
+     << ",\n  \"oriented\": " << (run.oriented ? "true" : "false") << ",\n  \"unchanged\": " << (r.iterations == 0 ? "true" : "false")
+     << ",\n  \"unchanged_reason\": " << json_string(r.iterations == 0 ? r.stop_reason : "")
+     << ",\n  \"stop_reason\": " << json_string(r.stop_reason);
   if (run.oriented) {
     const Eigen::Vector3d& d = run.job->orientation.best.direction;
     os << ",\n  \"print_direction\": [" << json_number(d.x()) << ", " << json_number(d.y()) << ", " << json_number(d.z())

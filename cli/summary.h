@@ -1,6 +1,6 @@
 // What support-slim tells the user about a run: the summary on stdout and the JSON report.
 //
-//   print_summary(run);          // the lines of the summary, on stdout
+//   print_summary(run, verbose); // the summary on stdout: the verdict first, internals if verbose
 //   write_report(path, run);     // every figure of the summary as one flat JSON object
 //
 // In (RunReport): the files' names, the mesh as read and its welded view, the job (orientation
@@ -31,7 +31,7 @@ struct RunReport {
   SlimmingFigures figures;
 };
 
-void print_summary(const RunReport& run);
+void print_summary(const RunReport& run, bool verbose);
 void write_report(const std::string& path, const RunReport& run);
 
 }  // namespace slim::cli

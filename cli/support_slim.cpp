@@ -22,10 +22,29 @@ using namespace slim;
 
 namespace {
 
+// Progress on stderr: on a terminal one line rewritten in place; otherwise (a log, a pipe) a
+// line per stage, the iterations of a stage counted on its first line only.
+bool progress_line_open = false;
+
 bool print_progress(double fraction, const std::string& message) {
-  std::fprintf(stderr, "\r[%3d%%] %-60s", static_cast<int>(100 * fraction), message.c_str());
-  if (fraction >= 1.0) std::fprintf(stderr, "\n");
+  static const bool terminal = isatty(STDERR_FILENO) != 0;
+  if (terminal) {
+    std::fprintf(stderr, "\r[%3d%%] %-60s", static_cast<int>(100 * fraction), message.c_str());
+    progress_line_open = fraction < 1.0;
+    if (!progress_line_open) std::fprintf(stderr, "\n");
+    return true;
+  }
+  static std::string stage;
+  const std::string now = message.substr(0, message.find("iteration "));
+  if (now != stage || fraction >= 1.0) std::fprintf(stderr, "[%3d%%] %s\n", static_cast<int>(100 * fraction), message.c_str());
+  stage = now;
   return true;
+}
+
+// A reason on a line of its own, even after a progress line left open.
+[[noreturn]] void fail(const std::string& reason, int code) {
+  if (progress_line_open) std::fprintf(stderr, "\n");
+  cli::die(reason, code);
 }
 
 // Orientation first (--orient): the part turns rigidly into its print pose and is slimmed there,
@@ -117,12 +136,12 @@ int main(int argc, char** argv) {
     io::write_mesh(c.out, file, view.positions_to_input(file.surface.V, r.surface.V), {r.after.quality, r.after.risky});
     cli::RunReport run{c.in, c.out, c.orient, &file, &view, &job, &c.slimming, c.scale, {}};
     run.figures = slimming_figures(job.posed, r, bbox_diagonal(view.surface.V));
-    cli::print_summary(run);
+    cli::print_summary(run, c.verbose);
     if (!c.report.empty()) cli::write_report(c.report, run);
   } catch (const std::exception& e) {
-    cli::die(e.what() + view.vertex_number_note(e.what()), cli::kExitRunFailed);
+    fail(e.what() + view.vertex_number_note(e.what()), cli::kExitRunFailed);
   } catch (...) {
-    cli::die("unexpected internal error (not a std::exception)", cli::kExitRunFailed);
+    fail("unexpected internal error (not a std::exception)", cli::kExitRunFailed);
   }
   return 0;
 }

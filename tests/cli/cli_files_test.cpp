@@ -49,7 +49,7 @@ TEST(CliFiles, PlyRoundTripsItsVertexAndFaceListsAndAttributesAtZeroIterations) 
   const test::AttributedMesh m = test::attributed_mesh();
   const fs::path in = dir / "parts.ply", out = dir / "parts_out.ply";
   test::write_attributed_ply(in.string(), m);
-  const test::CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "' --iterations 0 --quiet");
+  const test::CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "' --iterations 0 --quiet --verbose");
   ASSERT_EQ(r.exit_code, 0) << r.err;
 
   const io::MeshFile back = io::read_mesh(out.string());

@@ -167,7 +167,7 @@ TEST(CliReport, TheCreaseLimitHoldsInTheFileWritten) {
 TEST(CliReport, TheResolutionLadderIsSaidAndOneResolutionTurnsItOff) {
   const fs::path dir = test::scratch();
   const std::string bunny = "'" + test::sample_bunny_path() + "' -o '" + (dir / "out.ply").string() + "' --report '";
-  const test::CliRun ladder = test::run_cli(bunny + (dir / "ladder.json").string() + "'");
+  const test::CliRun ladder = test::run_cli(bunny + (dir / "ladder.json").string() + "' --verbose");
   ASSERT_EQ(ladder.exit_code, 0) << ladder.err;
   const std::smatch rungs = [&] {
     std::smatch m;
@@ -187,7 +187,7 @@ TEST(CliReport, TheResolutionLadderIsSaidAndOneResolutionTurnsItOff) {
   EXPECT_NEAR(f.at("support_estimate_after_mm3"), least, 1e-5 * least);
   EXPECT_NEAR(std::stod(rungs[2 + (f.at("resolution") == 32) + 2 * (f.at("resolution") == 48)]), least, 1e-12 * least);
 
-  const test::CliRun one = test::run_cli(bunny + (dir / "one.json").string() + "' --one-resolution");
+  const test::CliRun one = test::run_cli(bunny + (dir / "one.json").string() + "' --one-resolution --verbose");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   EXPECT_NE(one.out.find("  resolution      24 cells along the longest side\n"), std::string::npos) << one.out;
   const std::map<std::string, double> g = read_numbers(dir / "one.json", text);
@@ -257,5 +257,33 @@ TEST(CliReport, NamesTheVersionAndTheSettings) {
   EXPECT_EQ(pn.at("max_creases_pct"), 0.0);
   EXPECT_EQ(pn.at("min_saving_pct"), 0.0);
   EXPECT_NE(p.find("\"allow_stretch\": true"), std::string::npos) << p;
+  fs::remove_all(dir);
+}
+
+// The summary leads with the verdict, the same figures as the report; the internals wait for
+// --verbose; progress into a file (not a terminal) is a plain line per stage, never a '\r'.
+TEST(CliReport, TheSummaryLeadsWithTheVerdict) {
+  const fs::path dir = test::scratch();
+  const std::string in = test::sample_bunny_path(), out = (dir / "b.ply").string();
+  const test::CliRun r = test::run_cli("'" + in + "' -o '" + out + "' --one-resolution --report '" + (dir / "r.json").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string text;
+  const std::map<std::string, double> f = read_numbers(dir / "r.json", text);
+  char verdict[400];
+  std::snprintf(verdict, sizeof verdict, "support-slim: %s -> %s: support %.4g -> %.4g mm^3 (%+.1f%%, the support model's estimate)\n",
+                in.c_str(), out.c_str(), f.at("support_estimate_before_mm3"), f.at("support_estimate_after_mm3"),
+                f.at("support_change_pct"));
+  EXPECT_EQ(r.out.rfind(verdict, 0), 0u) << verdict << r.out;
+  EXPECT_NE(text.find("\"unchanged\": false"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"unchanged_reason\": \"\""), std::string::npos) << text;
+  for (const char* internal : {"support proxy", "AE  ", "domain  ", "resolution  "})
+    EXPECT_EQ(r.out.find(internal), std::string::npos) << internal << "\n" << r.out;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos);
+  std::istringstream lines(r.err);
+  int count = 0;
+  for (std::string line; std::getline(lines, line); ++count) EXPECT_EQ(line.rfind("[", 0), 0u) << line;
+  EXPECT_NE(r.err.find("factoring the global step\n"), std::string::npos) << r.err;
+  EXPECT_LE(count, 6) << r.err;  // the stages, not every iteration (the run made f.at("iterations_run"))
+  EXPECT_GT(f.at("iterations_run"), 6.0);
   fs::remove_all(dir);
 }

@@ -80,7 +80,7 @@ TEST(Cli, OrientTurnsThePartFirstAndSlimsItInItsPrintPose) {
   const fs::path in = dir / "mushroom.ply", out = dir / "slimmed.ply", posed = dir / "oriented.ply";
   io::save_surface(in.string(), upside_down);
   const CliRun r = run_cli("'" + in.string() + "' -o '" + out.string() + "' --orient --oriented-output '" +
-                           posed.string() + "' --iterations 3 --quiet");
+                           posed.string() + "' --iterations 3 --quiet --verbose");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* line : {"orientation     print direction (", "turned 180.0 deg", "support proxy", "(as given) ->",
                            "(oriented) ->", "(slimmed)", "1. score", "as given: score"})
@@ -128,6 +128,8 @@ TEST(Cli, ASmallSavingReturnsThePartAsGiven) {
   ASSERT_EQ(kept.exit_code, 0) << kept.err;
   EXPECT_EQ(io::load_surface(out.string()).V, given.V);
   EXPECT_NE(kept.out.find("worth a change of shape, so the input is returned unchanged"), std::string::npos) << kept.out;
+  EXPECT_EQ(kept.out.rfind("support-slim: " + in.string() + " -> " + out.string() + ": returned unchanged: ", 0), 0u)
+      << kept.out;  // the verdict comes first
   const CliRun any = run_cli("'" + in.string() + "' -o '" + out.string() + "' --allow-stretch --min-saving 0 --quiet");
   ASSERT_EQ(any.exit_code, 0) << any.err;
   EXPECT_GT((io::load_surface(out.string()).V - given.V).cwiseAbs().maxCoeff(), 0.1);
