@@ -1,5 +1,6 @@
 #include "filter_parts.h"
 
+#include <QRegularExpression>
 #include <vcg/complex/append.h>
 
 namespace slim::plugin {
@@ -106,12 +107,18 @@ void log_orientation(const FilterRun& run, const QString& filter, const slim::Or
   if (r.inside_out && note_inside_out) run.warning(filter + ": " + kInsideOutNotice);
 }
 
+QString result_layer_name(const QString& input_label, const QString& suffix) {
+  QString name = input_label;
+  name.remove(QRegularExpression("\\.[A-Za-z0-9]{2,4}$"));
+  return name + "_" + suffix;
+}
+
 // A copy of `input` as a new layer with the given positions and the overhang results of its pose;
 // removed again if anything fails, so the document is never left half changed.
 MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& suffix, ResultFrame frame,
                             const slim::Points& V, const Eigen::VectorXd& face_quality, const std::vector<bool>& risky,
                             const Eigen::VectorXd* vertex_quality) {
-  MeshModel* output = md.addNewMesh(QString(), input.label() + " " + suffix, true);
+  MeshModel* output = md.addNewMesh(QString(), result_layer_name(input.label(), suffix), true);
   try {
     output->updateDataMask(&input);
     vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(output->cm, input.cm);

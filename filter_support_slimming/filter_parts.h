@@ -83,8 +83,13 @@ void log_orientation(const FilterRun& run, const QString& filter, const slim::Or
 // frame, +Z up on z = 0, so it gets the identity.
 enum class ResultFrame { Input, PrintPose };
 
-// A copy of `input` as a new layer with the given positions and the overhang results of its pose;
-// removed again if anything fails, so the document is never left half changed.
+// "<name>_<suffix>": the input layer's name without its file extension ("bunny.ply" ->
+// "bunny_slimmed"), so every MeshLab shows it whole (2020.09's layer list cuts at the last dot).
+QString result_layer_name(const QString& input_label, const QString& suffix);
+
+// A copy of `input` as a new layer named result_layer_name(input's label, suffix), with the given
+// positions and the overhang results of its pose; removed again if anything fails, so the
+// document is never left half changed.
 MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& suffix, ResultFrame frame,
                             const slim::Points& V, const Eigen::VectorXd& face_quality, const std::vector<bool>& risky,
                             const Eigen::VectorXd* vertex_quality);

@@ -4,7 +4,7 @@
 #   then File -> Export Mesh As (Ctrl+Shift+E) on the current layer.
 # Checks on the way: the filter's dialog is titled "Support Slimming"; its last parameter, the
 # "Optimize the orientation first" checkbox, is on screen whole (see check_last_parameter); the
-# filter logs its result; the export dialog is titled 'Save "<name> slimmed" Layer', i.e. the
+# filter logs its result; the export dialog is titled 'Save "<name>_slimmed" Layer', i.e. the
 # current layer is the new one.
 # Keeps OUT/dialog.png, OUT/meshlab_gui.png (both layers listed), OUT/layer.ply (the exported new
 # layer) and OUT/meshlab.log; OUT/failure.png when a step fails. Every wait has a timeout.
@@ -159,7 +159,7 @@ sleep 0.5
 # Export the current layer: its dialog names the layer, which must be the filter's new one.
 xdotool windowfocus --sync "$main"
 xdotool key ctrl+shift+e
-save="$(wait_window '^Save ".* slimmed" Layer$' 20)" || fail "Export Mesh As did not offer a '<name> slimmed' layer: no new current layer"
+save="$(wait_window '^Save ".*_slimmed" Layer$' 20)" || fail "Export Mesh As did not offer a '<name>_slimmed' layer: no new current layer"
 echo "export dialog: $(xdotool getwindowname "$save")"
 xdotool windowfocus --sync "$save"
 xdotool type --delay 10 "$out/layer.ply"

@@ -1,6 +1,6 @@
 // The real MeshLab GUI (the private prefix's copy, so it loads this build's plugin), driven under
 // Xvfb with xdotool by gui_check.sh: Filters -> Smoothing, Fairing and Deformation -> Support
-// Slimming -> Apply must leave a new "<name> slimmed" layer whose mesh is the deformed input, and
+// Slimming -> Apply must leave a new "<name>_slimmed" layer whose mesh is the deformed input, and
 // the dialog must show every parameter on the 1280x1024 screen (the last one, found by ticking it,
 // whole and inside the dialog: gui_check.sh's check_last_parameter).
 // Label gui; exclude it with ctest -LE gui.
@@ -58,7 +58,7 @@ TEST(MeshLabGui, SupportSlimmingFromTheFiltersMenuAddsASlimmedLayer) {
                         test::shell_quote(test::meshlab_prefix()) + " " + test::shell_quote(mesh) + " " +
                         test::shell_quote(out.string()) + " " + std::to_string(index));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::string layer_name = fs::path(mesh).filename().string() + " slimmed";
+  const std::string layer_name = fs::path(mesh).stem().string() + "_slimmed";  // "bunny.ply" -> "bunny_slimmed"
   EXPECT_NE(r.output.find("export dialog: Save \"" + layer_name + "\" Layer"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("last parameter visible: yes"), std::string::npos) << r.output;
   for (const char* line : {"dialog geometry: ", "last parameter's check mark: "}) {  // for the test's log

@@ -41,7 +41,7 @@ void expect_slimmed_layer(const MeshModel& input, const MeshModel& out, const st
   ASSERT_NE(&out, &input);
   EXPECT_EQ(positions(input), original);  // the input layer is untouched
   EXPECT_FALSE(input.hasDataMask(MeshModel::MM_FACEQUALITY));
-  EXPECT_EQ(out.label(), input.label() + " slimmed");
+  EXPECT_EQ(out.label(), input.label() + "_slimmed");  // the tests' labels have no file extension
   EXPECT_EQ(out.cm.fn, input.cm.fn);
   ASSERT_EQ(out.cm.vn, input.cm.vn);
   EXPECT_NE(positions(out), original);
@@ -73,7 +73,7 @@ void expect_oriented_layer(const MeshModel& input, const MeshModel& out, const s
                            const OrientationOptions& options, const QStringList& log) {
   ASSERT_NE(&out, &input);
   EXPECT_EQ(positions(input), original);  // the input layer is untouched
-  EXPECT_EQ(out.label(), input.label() + " oriented");
+  EXPECT_EQ(out.label(), input.label() + "_oriented");
   const Surface seen = vcg_adapters::to_surface(input.cm);  // float positions, as the filter saw them
   const Surface got = vcg_adapters::to_surface(out.cm);
   ASSERT_EQ(got.F, seen.F);  // orienting never adds, removes or reorders a face

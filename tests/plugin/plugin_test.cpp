@@ -132,6 +132,22 @@ TEST(Plugin, SupportSlimmingAddsASlimmedLayerAndLeavesTheInputAlone) {
   EXPECT_EQ(h.logLines().first().toStdString(), "Support Slimming: support-slimming " + test::project_version());
 }
 
+// The new layer is "<name>_slimmed", the input's file extension dropped, so that MeshLab 2020.09's
+// layer list (which cuts a label at its last dot) does not show it as the input's own name.
+TEST(Plugin, TheNewLayerIsNamedAfterTheInputWithoutItsExtension) {
+  PluginHarness h;
+  ASSERT_TRUE(h.ok()) << h.error().toStdString();
+  for (const auto& [label, expected] : std::vector<std::pair<QString, QString>>{
+           {"bunny.ply", "bunny_slimmed"}, {"Part 7.STL", "Part 7_slimmed"}, {"scan v1.2", "scan v1.2_slimmed"}, {"T", "T_slimmed"}}) {
+    MeshDocument md;
+    test::add_layer(md, test::t_shape(), label);
+    RichParameterList params = h.defaults(kSlimming, md);
+    params.setValue("maxIterations", IntValue(0));
+    ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
+    EXPECT_EQ(md.mm()->label().toStdString(), expected.toStdString());
+  }
+}
+
 // A 2.5 mm part is most likely in another unit: the log says so and how to scale it.
 TEST(Plugin, SupportSlimmingWarnsOfAPartTooSmallForMillimetres) {
   PluginHarness h;
@@ -300,14 +316,14 @@ TEST(Plugin, ResultLayersCarryTheMatrixOfTheirFrame) {
   input->cm.Tr = moved;
 
   ASSERT_TRUE(h.apply(kOrientation, md, h.defaults(kOrientation, md))) << h.lastError().toStdString();
-  EXPECT_EQ(md.mm()->label(), "bunny oriented");
+  EXPECT_EQ(md.mm()->label(), "bunny_oriented");
   EXPECT_TRUE(md.mm()->cm.Tr == Matrix44m::Identity());
 
   md.setCurrentMesh(input->id());
   RichParameterList params = h.defaults(kSlimming, md);
   params.setValue("maxIterations", IntValue(2));
   ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
-  EXPECT_EQ(md.mm()->label(), "bunny slimmed");
+  EXPECT_EQ(md.mm()->label(), "bunny_slimmed");
   EXPECT_TRUE(md.mm()->cm.Tr == moved);
 
   md.setCurrentMesh(input->id());
