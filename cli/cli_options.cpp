@@ -96,20 +96,20 @@ int integer(const std::string& flag, const std::string& text) {
   return static_cast<int>(v);
 }
 
-// A number that must not be negative (a typo's minus sign must not turn a limit off).
-double at_least_zero(const std::string& flag, double v, const std::string& zero_means) {
+// v, or the end with "FLAG expects a value BOUND, got V" when `ok` is false.
+double required(bool ok, const std::string& flag, double v, const std::string& bound) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", v);
-  if (v < 0.0) die(flag + " expects a value >= 0" + zero_means + ", got " + text);
+  if (!ok) die(flag + " expects a value " + bound + ", got " + text);
   return v;
 }
 
-double positive(const std::string& flag, double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  if (!(v > 0.0)) die(flag + " expects a value > 0, got " + text);
-  return v;
+// A number that must not be negative (a typo's minus sign must not turn a limit off).
+double at_least_zero(const std::string& flag, double v, const std::string& zero_means) {
+  return required(v >= 0.0, flag, v, ">= 0" + zero_means);
 }
+
+double positive(const std::string& flag, double v) { return required(v > 0.0, flag, v, "> 0"); }
 
 // A limit as the CLI and the dialog give it (creases, displacement): a percentage, 0 for no limit.
 std::optional<double> limit_pct(double pct) { return pct == 0.0 ? std::nullopt : std::optional<double>(pct); }

@@ -88,9 +88,9 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
 
   const Points n0 = face_normals(input_);
   local_.set_rest(mesh);
-  costly_ = costly_overhangs(input_, before, d, o.coherence.costly_share);
+  const std::vector<bool> costly = costly_overhangs(input_, before, d, o.coherence.costly_share);
   std::vector<bool> left_alone = before.on_plate;  // no piece: no turn asked for
-  for (size_t f = 0; f < left_alone.size(); ++f) left_alone[f] = left_alone[f] || (before.risky[f] && !costly_[f]);
+  for (size_t f = 0; f < left_alone.size(); ++f) left_alone[f] = left_alone[f] || (before.risky[f] && !costly[f]);
   local_.pieces = constraint_pieces(domain_.embedding, mesh.T.rows(), left_alone, n0);
   local_.d = d;
   local_.tau = std::sin(std::max(0.0, rule.print.alpha_max_deg - *o.steps.margin_deg) * M_PI / 180.0);
@@ -99,7 +99,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   local_.proxies.max_k = o.steps.max_k;
   {
     ScopedSeconds timer(times_.local);  // the local step's input
-    TieDirections ties = tie_directions(input_, mesh, local_.pieces, n0, costly_, d, rule.diagonal_mm, o.coherence);
+    TieDirections ties = tie_directions(input_, mesh, local_.pieces, n0, costly, d, rule.diagonal_mm, o.coherence);
     local_.tie = std::move(ties.tie);
     local_.edge_axis = std::move(ties.edge_axis);
   }
@@ -108,7 +108,7 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
   local_.skip = features_->tet_flags();
 
   report(0.05, "factoring the global step");
-  factor_global_step(before, rule.diagonal_mm);
+  factor_global_step(costly, rule.diagonal_mm);
   state_ = local_.make_state();
   V_ = mesh.V;
   for (const auto& tet_pieces : local_.pieces)
@@ -121,8 +121,9 @@ SupportSlimmer::SupportSlimmer(const CheckedSurface& input, EmbeddedDomain domai
 }
 
 // Weights: the rest volumes (the paper), with the coherent factors and the features' weight;
-// the plate vertices held; a part that does not touch the plate stays where it is.
-void SupportSlimmer::factor_global_step(const OverhangReport& before, double diagonal_mm) {
+// the plate vertices held; a part that does not touch the plate stays where it is. costly: #F, the
+// overhangs turned (costly_overhangs.h), which the boost and the free region read.
+void SupportSlimmer::factor_global_step(const std::vector<bool>& costly, double diagonal_mm) {
   const TetMesh& mesh = domain_.mesh;
   const int nt = static_cast<int>(mesh.T.rows());
   weights_.resize(nt);
@@ -130,7 +131,7 @@ void SupportSlimmer::factor_global_step(const OverhangReport& before, double dia
     const auto& pieces = local_.pieces[static_cast<size_t>(t)];
     weights_(t) = tet_volume(mesh.V, mesh.T.row(t));
     if (pieces.empty()) weights_(t) *= options_.coherence.interior_weight;
-    const bool risky = std::any_of(pieces.begin(), pieces.end(), [&](const auto& pc) { return costly_[static_cast<size_t>(pc.first)]; });
+    const bool risky = std::any_of(pieces.begin(), pieces.end(), [&](const auto& pc) { return costly[static_cast<size_t>(pc.first)]; });
     if (risky) weights_(t) *= options_.coherence.risky_boost;
     if (features_->tet_feature()[static_cast<size_t>(t)] >= 0) weights_(t) *= kFeatureWeight;
   }
@@ -141,7 +142,7 @@ void SupportSlimmer::factor_global_step(const OverhangReport& before, double dia
   ao.anchor_floating_components = true;
   {
     ScopedSeconds timer(times_.factorization);
-    const Eigen::VectorXd anchors = region_anchors(input_, costly_, mesh, diagonal_mm, options_.region);
+    const Eigen::VectorXd anchors = region_anchors(input_, costly, mesh, diagonal_mm, options_.region);
     arap_ = std::make_unique<ArapSolver>(mesh, weights_, pinned, anchors, ao);
     if (options_.hold_proportions) {
       const std::vector<Points> C = stretch_constraints(input_, domain_.embedding, mesh.V.rows());

@@ -81,7 +81,7 @@ class SupportSlimmer {
   std::string backend_name() const { return arap_->backend_name(); }
 
  private:
-  void factor_global_step(const OverhangReport& before, double diagonal_mm);
+  void factor_global_step(const std::vector<bool>& costly, double diagonal_mm);
   // The guards on the global step's solution; true when they moved it.
   bool guard(Points& proposed, int& held_back, int& features_held, bool& inversion_cut);
   IterationStats measure(const Points& solved, const Points& accepted, bool guarded, bool inversion_cut, int held_back);
@@ -100,7 +100,6 @@ class SupportSlimmer {
   std::unique_ptr<VolumeKeeping> volume_;  // when the coherent options keep the volume
   std::unique_ptr<SurfaceGuards> surface_guards_;  // none for the paper's method
   std::vector<std::vector<int>> neighbours_;
-  std::vector<bool> costly_;  // #F: the overhangs turned (costly_overhangs.h)
   Points V_;             // the current domain positions
   Surface current_;      // the current surface: its positions, the input's faces
   CheckedSurface current_view_;
