@@ -267,7 +267,7 @@ const ScriptFault kScriptFaults[] = {
      "is a RichInt, but it must be a RichFloat"},
     {"absolute value given as a plain float",
      [](QString s) {
-       return s.replace(R"(type="RichAbsPerc" name="plateTolerance" value="0.01" min="0" max="100")",
+       return s.replace(R"(type="RichAbsPerc" name="plateTolerance" value="0.0157572" min="0" max="15.7572")",
                         R"(type="RichFloat" name="plateTolerance" value="0.01")");
      },
      "is a RichFloat, but it must be a RichAbsPerc"},
