@@ -1,9 +1,10 @@
 # The Debian package (scripts/package-deb.sh runs cpack -G DEB): the plugin in the folder the
-# installed meshlab reads, support-slim in /usr/bin, the README and the .mlx examples in
-# /usr/share/doc/<package>. It depends on exactly the meshlab version it was built against
-# (MeshLab refuses a plugin of another version, and libmeshlab-common.so has no stable ABI), and
-# through dpkg-shlibdeps on the libraries it links (CHOLMOD, TetGen, Qt, OpenMP); OpenBLAS is
-# named as well, because CHOLMOD runs several times faster with it than with the reference BLAS.
+# installed meshlab reads, support-slim in /usr/bin with its man page, the README and the .mlx
+# examples in /usr/share/doc/<package>. It depends on exactly the meshlab version it was built
+# against (MeshLab refuses a plugin of another version, and libmeshlab-common.so has no stable
+# ABI), and through dpkg-shlibdeps on the libraries it links (CHOLMOD, TetGen, Qt, OpenMP);
+# OpenBLAS is named as well, because CHOLMOD runs several times faster with it than with the
+# reference BLAS.
 set(SLIM_DEB_PACKAGE "meshlab-support-slimming")
 set(SLIM_DEB_MAINTAINER "support-slimming maintainers <support-slimming@users.noreply.github.com>" CACHE STRING
     "Maintainer field of the Debian package")
@@ -28,6 +29,28 @@ add_custom_target(slim_deb_changelog ALL DEPENDS "${CMAKE_BINARY_DIR}/deb/change
 install(FILES "${CMAKE_CURRENT_LIST_DIR}/copyright" "${CMAKE_BINARY_DIR}/deb/changelog.Debian.gz"
         DESTINATION "${doc}" COMPONENT deb_only EXCLUDE_FROM_ALL)
 install(FILES "${PROJECT_SOURCE_DIR}/README.md" DESTINATION "${doc}" COMPONENT deb_only EXCLUDE_FROM_ALL)
+
+# support-slim's man page, made from its own --help and --version by help2man (Debian's help2man),
+# so it says what the binary in the package says; gzip -9n as the changelog. help2man runs the
+# binary, hence the dependency on the target.
+find_program(SLIM_HELP2MAN help2man)
+if(SLIM_HELP2MAN)
+  set(slim_man "${CMAKE_BINARY_DIR}/deb/support-slim.1")
+  add_custom_command(OUTPUT "${slim_man}.gz"
+    COMMAND "${SLIM_HELP2MAN}" --no-info --section=1
+            "--name=reshape a mesh so that it needs less support material when 3D printed"
+            "--include=${CMAKE_CURRENT_LIST_DIR}/support-slim.h2m" "--output=${slim_man}" "$<TARGET_FILE:support-slim>"
+    COMMAND gzip -9nf "${slim_man}"
+    DEPENDS support-slim "${CMAKE_CURRENT_LIST_DIR}/support-slim.h2m"
+    COMMENT "Generating support-slim.1.gz (help2man)"
+    VERBATIM)
+  add_custom_target(slim_deb_man ALL DEPENDS "${slim_man}.gz")
+  install(FILES "${slim_man}.gz" DESTINATION share/man/man1 COMPONENT deb_only EXCLUDE_FROM_ALL)
+else()
+  add_custom_target(slim_deb_man COMMAND "${CMAKE_COMMAND}" -E echo
+                    "help2man is missing (apt-get install help2man): the package would have no man page" COMMAND false)
+  message(WARNING "help2man is missing (apt-get install help2man): support-slim's man page cannot be made")
+endif()
 # The pages the README links to, beside it as in the source tree.
 file(GLOB slim_doc_pages "${PROJECT_SOURCE_DIR}/docs/*.md" "${PROJECT_SOURCE_DIR}/docs/*.png")
 install(FILES ${slim_doc_pages} DESTINATION "${doc}/docs" COMPONENT deb_only EXCLUDE_FROM_ALL)

@@ -3,7 +3,7 @@
 # prints the .deb's path as its last line.
 #
 # The package (packaging/debian.cmake, made by CPack) installs the plugin into MeshLab's plugins
-# folder, support-slim into /usr/bin, and the README and the .mlx examples into
+# folder, support-slim into /usr/bin with its man page, and the README and the .mlx examples into
 # /usr/share/doc/meshlab-support-slimming. It depends on exactly the installed meshlab version and
 # on the libraries the binaries link (CHOLMOD, TetGen, Qt), and on OpenBLAS.
 #
@@ -24,8 +24,8 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release "${generator[@]}" >&2
 fi
 command -v dpkg-shlibdeps >/dev/null || { echo "package-deb: dpkg-shlibdeps is missing (apt-get install dpkg-dev)" >&2; exit 1; }
-# Only what goes into the package, and its changelog.
-cmake --build "$build" -j 2 --target filter_support_slimming support-slim slim_deb_changelog >&2
+# Only what goes into the package, its changelog and support-slim's man page (help2man).
+cmake --build "$build" -j 2 --target filter_support_slimming support-slim slim_deb_changelog slim_deb_man >&2
 rm -rf "$build/packages"
 (cd "$build" && cpack -G DEB --config CPackConfig.cmake >&2)
 deb="$(ls "$build"/packages/*.deb)"

@@ -15,7 +15,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 
 PACKAGES=(
-  build-essential cmake pkg-config ninja-build dpkg-dev ccache python3
+  build-essential cmake pkg-config ninja-build dpkg-dev ccache python3 help2man
   qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   libsuitesparse-dev libopenblas0-pthread

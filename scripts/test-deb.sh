@@ -4,7 +4,7 @@
 #   2. a bookworm root from debootstrap with Debian's meshlab, xvfb and lintian, cached in
 #      $SLIM_BOOKWORM_ROOT; each run works on a throwaway overlay of it, so the root stays clean;
 #   3. there: lintian (no errors; scripts/lib/check-deb.sh checks the files and dependencies too),
-#      apt-get install of the .deb, the real meshlabserver running the three installed
+#      apt-get install of the .deb (with support-slim's man page), the real meshlabserver running the three installed
 #      examples/*.mlx on the bunny with the plugin from the system plugins folder, support-slim
 #      from /usr/bin, and dpkg -r, after which none of the package's files may be left.
 # Every stage prints how long it took; any failure exits non-zero. Needs root.
@@ -44,7 +44,13 @@ stage_done
 stage "apt-get install $(basename "$deb")"
 in_root "apt-get update -qq && apt-get install -y -qq --no-install-recommends $pkg >/dev/null
          dpkg -L meshlab-support-slimming >/tmp/installed-files
-         [ -f /usr/lib/x86_64-linux-gnu/meshlab/plugins/libfilter_support_slimming.so ] || { echo 'no plugin in the system plugins folder' >&2; exit 1; }"
+         [ -f /usr/lib/x86_64-linux-gnu/meshlab/plugins/libfilter_support_slimming.so ] || { echo 'no plugin in the system plugins folder' >&2; exit 1; }
+         man=/usr/share/man/man1/support-slim.1.gz
+         [ -f \$man ] || { echo \"no man page: \$man\" >&2; exit 1; }
+         # help2man writes each option in roff, its hyphens escaped: \\-\\-max\\-deviation.
+         zcat \$man | sed 's/\\\\-/-/g' | grep -q -- '--max-deviation' ||
+           { zcat \$man >&2; echo \"the man page does not list support-slim's options\" >&2; exit 1; }
+         echo \"[deb] man page: \$man, \$(zcat \$man | grep -c '^\\.TP') options\""
 stage_done
 
 stage "meshlabserver runs the installed examples with the system plugin; support-slim runs"

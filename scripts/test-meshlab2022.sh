@@ -22,7 +22,7 @@ set -euo pipefail
 # system plugins' dependencies that Debian's meshlab only recommends: without them five plugins
 # fail to load, the GUI shows a blocking error dialog and never loads extra plugins.
 PACKAGES=(
-  meshlab cmake g++ ninja-build qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev xvfb xauth dpkg-dev
+  meshlab cmake g++ ninja-build qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev xvfb xauth dpkg-dev help2man
   lib3ds-1-3 libmuparser2v5 libopenctm1 libqhull-r8.0 libxerces-c3.2t64
   libsuitesparse-dev libopenblas0-pthread libtet1.5-dev
   libgtest-dev xdotool lintian ccache

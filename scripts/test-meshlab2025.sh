@@ -22,7 +22,7 @@ set -euo pipefail
 # system plugins' dependencies that Debian's meshlab only recommends: without them MeshLab shows a
 # blocking error dialog and loads no extra plugin. TetGen is 1.6 in forky (libtet-dev).
 PACKAGES=(
-  meshlab cmake g++ ninja-build qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev xvfb xauth dpkg-dev
+  meshlab cmake g++ ninja-build qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev xvfb xauth dpkg-dev help2man
   lib3ds-1-3 libmuparser2v5 libopenctm1 libqhull-r8.0
   libsuitesparse-dev libopenblas0-pthread libtet-dev
   libgtest-dev xdotool lintian ccache
