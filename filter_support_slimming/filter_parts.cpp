@@ -1,5 +1,7 @@
 #include "filter_parts.h"
 
+#include <optional>
+
 #include <QRegularExpression>
 #include <vcg/complex/append.h>
 
@@ -7,21 +9,20 @@ namespace slim::plugin {
 
 void add_alpha_max_parameter(RichParameterList& par) {
   par.addParam(RichFloat("alphaMax", 45.0f, "Self-supporting angle (deg)",
-                         "The largest overhang, measured from the vertical, that prints without support. "
-                         "Faces that lean out further are risky. Must be in [0, 90)."));
+                         "Largest overhang from the vertical that prints without support; in [0, 90)."));
 }
 
+float dialog_diagonal(const MeshModel& m) { return m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag(); }
+
 void add_print_parameters(const MeshModel& m, RichParameterList& par) {
-  const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
+  const float diag = dialog_diagonal(m);
   par.addParam(meshlab_api::RichDirection(
       "printDirection", vcg::Point3f(0, 0, 1), "Print direction",
-      "The direction the part grows in while printing (the build plate's normal). It need not be unit length."));
+      "The direction the part grows in (the build plate's normal); any length."));
   add_alpha_max_parameter(par);
   par.addParam(meshlab_api::RichAbsPerc("plateTolerance", 0.001f * diag, 0.0f, diag,
                                          "Build plate tolerance",
-                                         "Faces whose three vertices all lie within this distance of the lowest "
-                                         "point along the print direction rest on the build plate and are never "
-                                         "risky."));
+                                         "Faces this close to the lowest point rest on the plate, never risky."));
 }
 
 slim::PrintSetup print_setup(const RichParameterList& par) {
@@ -34,7 +35,8 @@ slim::PrintSetup print_setup(const RichParameterList& par) {
 }
 
 // The filter's parameters -> the core's options. Ranges are checked by the core, which says what
-// is wrong in words the log can show; a negative budget here, as the core reads it as none.
+// is wrong in words the log can show; here what the core would read otherwise: a negative budget
+// or crease limit (the core reads 0 as none) and the least saving, checked before any work.
 slim::SlimmingOptions slimming_options(const RichParameterList& par) {
   slim::SlimmingOptions o;
   o.print = print_setup(par);
@@ -42,10 +44,18 @@ slim::SlimmingOptions slimming_options(const RichParameterList& par) {
   o.domain = par.getEnum("domain") == 1 ? slim::DomainKind::TetGen : slim::DomainKind::Voxel;
   o.method = par.getEnum("method") == 1 ? slim::SlimmingMethod::Paper : slim::SlimmingMethod::Coherent;
   o.steps.max_iterations = par.getInt("maxIterations");
-  const float budget = par.getFloat("maxDeviation");
-  if (budget < 0.0f)  // a typo's minus sign must not turn the budget off (NaN: the core says "finite")
-    throw FilterFailure(QString("the deviation budget must be >= 0 % (0: no budget), got %1").arg(double(budget)));
-  o.budget = slim::DeviationBudget::from_percent(budget);
+  const double budget = par.getAbsPerc("maxDeviation");  // mm (the dialog's percentage is of the bbox diagonal)
+  if (budget < 0.0)  // a typo's minus sign must not turn the budget off (NaN: the core says "finite")
+    throw FilterFailure(QString("the deviation budget must be >= 0 mm (0: no budget), got %1").arg(budget));
+  o.budget = budget == 0.0 ? slim::DeviationBudget::none() : slim::DeviationBudget::length(budget);
+  const double creases = par.getFloat("maxCreases");
+  if (!(creases >= 0.0 && creases <= 100.0))
+    throw FilterFailure(QString("the crease limit must be in [0, 100] % (0: no limit), got %1").arg(creases));
+  o.result.max_crease_share_pct = creases == 0.0 ? std::nullopt : std::optional<double>(creases);
+  const double saving = par.getFloat("minSaving");
+  if (!(saving >= 0.0 && saving < 100.0))
+    throw FilterFailure(QString("the least saving must be in [0, 100) % (0: any saving), got %1").arg(saving));
+  o.result.min_support_saving_pct = saving;
   o.steps.max_k = par.getInt("maxK");
   if (par.getBool("allowStretch")) slim::allow_stretch(o);
   return o;
@@ -113,11 +123,28 @@ QString result_layer_name(const QString& input_label, const QString& suffix) {
   return name + "_" + suffix;
 }
 
+namespace {
+
+// Vertex quality = the displacement; vertex colour = its ramp, unless the input has colours.
+void write_displacement(MeshModel& output, const MeshModel& input, const Displacement& d) {
+  output.updateDataMask(MeshModel::MM_VERTQUALITY);
+  slim::vcg_adapters::write_vertex_quality(output.cm, d.per_vertex);
+  if (input.hasDataMask(MeshModel::MM_VERTCOLOR)) return;  // the input's own colours, as they were
+  output.updateDataMask(MeshModel::MM_VERTCOLOR);
+  // VCG's ramp runs red -> blue from its first bound to its second: from the top down to 0 it is
+  // blue at 0 and red at the top. With no displacement at all every vertex is blue.
+  const float top = d.ramp_top_mm > 0.0 ? float(d.ramp_top_mm) : 1.0f;
+  for (CVertexO& v : output.cm.vert)
+    if (!v.IsD()) v.C() = vcg::Color4b::ColorRamp(top, 0.0f, float(v.Q()));
+}
+
+}  // namespace
+
 // A copy of `input` as a new layer with the given positions and the overhang results of its pose;
 // removed again if anything fails, so the document is never left half changed.
 MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& suffix, ResultFrame frame,
                             const slim::Points& V, const Eigen::VectorXd& face_quality, const std::vector<bool>& risky,
-                            const Eigen::VectorXd* vertex_quality) {
+                            const Displacement* displacement) {
   MeshModel* output = md.addNewMesh(QString(), result_layer_name(input.label(), suffix), true);
   try {
     output->updateDataMask(&input);
@@ -127,11 +154,10 @@ MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& s
     } else {
       output->cm.Tr.SetIdentity();
     }
-    output->updateDataMask(MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR |
-                           (vertex_quality ? int(MeshModel::MM_VERTQUALITY) : 0));
+    output->updateDataMask(MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR);
     slim::vcg_adapters::write_positions(output->cm, V);
     slim::vcg_adapters::write_face_results(output->cm, face_quality, true, &risky);
-    if (vertex_quality) slim::vcg_adapters::write_vertex_quality(output->cm, *vertex_quality);
+    if (displacement) write_displacement(*output, input, *displacement);
   } catch (...) {
     meshlab_api::delete_layer(md, output);
     md.setCurrentMesh(input.id());

@@ -34,6 +34,9 @@ void add_print_orientation_parameters(const MeshModel& m, RichParameterList& par
 void apply_print_orientation(MeshDocument& md, const RichParameterList& par, FilterRun& run);
 
 // ---- parameters shared by the filters
+// The length MeshLab's absolute-or-percentage parameters take their percentage of: m's bounding-box
+// diagonal (1 for an empty mesh).
+float dialog_diagonal(const MeshModel& m);
 void add_alpha_max_parameter(RichParameterList& par);
 // Print direction, alpha_max and the build plate tolerance (fitted to m's size).
 void add_print_parameters(const MeshModel& m, RichParameterList& par);
@@ -87,11 +90,21 @@ enum class ResultFrame { Input, PrintPose };
 // "bunny_slimmed"), so every MeshLab shows it whole (2020.09's layer list cuts at the last dot).
 QString result_layer_name(const QString& input_label, const QString& suffix);
 
+// How far each vertex of the layer moved (mm), for the result's vertex quality, and the length the
+// colour ramp reaches red at (the deviation budget in mm, or the largest displacement without one).
+struct Displacement {
+  Eigen::VectorXd per_vertex;
+  double ramp_top_mm = 0.0;
+};
+
 // A copy of `input` as a new layer named result_layer_name(input's label, suffix), with the given
 // positions and the overhang results of its pose; removed again if anything fails, so the
-// document is never left half changed.
+// document is never left half changed. With a displacement, vertex quality is that displacement
+// and, when the input has no vertex colours of its own, the vertex colours are VCG's colour ramp of
+// it, blue where a vertex did not move to red at ramp_top_mm and beyond; MeshLab then draws the
+// layer with them. Input vertex colours pass through untouched.
 MeshModel* add_result_layer(MeshDocument& md, MeshModel& input, const QString& suffix, ResultFrame frame,
                             const slim::Points& V, const Eigen::VectorXd& face_quality, const std::vector<bool>& risky,
-                            const Eigen::VectorXd* vertex_quality);
+                            const Displacement* displacement);
 
 }  // namespace slim::plugin

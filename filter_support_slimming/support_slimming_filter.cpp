@@ -11,62 +11,42 @@
 
 namespace slim::plugin {
 
-// Shown at the top of the dialog, always: short, so that every parameter fits below it on a
-// 1280x1024 screen in MeshLab 2020.09. The details are in each parameter's help, which the
-// dialog's Help button shows.
+// Shown at the top of the dialog, always: short, so that every parameter and its Help line fit
+// below it on a 1280x1024 screen in MeshLab 2020.09. MeshLab shows a parameter's help (its
+// tooltip) both as the line the Help button reveals and on hovering, so each is one short
+// sentence; docs/usage.md explains each parameter at length.
 const char* const kSupportSlimmingInfo =
-    "Deforms the mesh (taken in mm, at print size) as rigidly as possible so that it needs less support when printed "
-    "along the <i>print direction</i>. The result is a <b>new layer</b>; the input layer is not changed. "
-    "The result keeps the input's vertices, their order and attributes, except: the still-risky faces "
-    "are selected, face quality is <i>n&middot;d + sin(&alpha;<sub>max</sub>)</i> (negative: risky) and "
-    "coloured as by <i>Overhang Analysis</i>, and vertex quality is the displacement. "
-    "<i>Help</i> explains each parameter.";
+    "Deforms the mesh (in mm, at print size) to need less support along the <i>print direction</i>, into a new "
+    "layer <i>name</i>_slimmed: the still-risky faces selected and coloured, vertex quality and colour the "
+    "displacement (blue: none, red: the deviation budget).";
 
 void add_support_slimming_parameters(const MeshModel& m, RichParameterList& par) {
   const slim::SlimmingOptions defaults;
+  const float diag = dialog_diagonal(m);
   add_print_parameters(m, par);
   par.addParam(RichInt("resolution", defaults.resolution, "Voxel resolution",
-                       "Number of voxel cells along the longest side of the bounding box. The tetrahedral "
-                       "domain is made from these cells; finer follows smaller features but runs slower. The "
-                       "coherent method also slims at 4/3 and 2 times it (parts up to 300,000 faces) and keeps the "
-                       "result that needs the least support (estimated; the log gives each)."));
+                       "Voxel cells along the longest side; finer is slower. Coherent also tries 4/3 and 2 times it."));
   par.addParam(RichEnum("domain", 0, QStringList() << "Voxel" << "TetGen", "Domain",
-                        "Voxel: tetrahedra from a voxel grid aligned with the print direction (works on open and "
-                        "non-manifold meshes). TetGen: a constrained tetrahedralization of the surface; needs a "
-                        "closed, clean, non-self-intersecting mesh."));
+                        "Voxel: any mesh. TetGen: a closed, clean, non-self-intersecting mesh."));
   par.addParam(RichEnum("method", 0, QStringList() << "Coherent" << "Paper", "Method",
-                        "Each iteration turns every tetrahedron holding risky faces by the smallest rotation that "
-                        "makes them self-supporting (an exact LP on the Gauss sphere; area-weighted K-means proxies "
-                        "when no single rotation exists), then blends the tetrahedra back together with an "
-                        "as-rigid-as-possible solve; the base stays on the build plate. Coherent (default): "
-                        "neighbouring rotations agree, risky regions turn as a body in small steps, flat overhangs turn "
-                        "towards their nearest edge, the volume is kept, and the result is the iterate that needs the "
-                        "least support as a slicer builds it (estimated; the log gives the figure). Paper: <i>Direct Computation of Minimal Rotation for Support "
-                        "Slimming</i> as written, for comparison."));
+                        "Coherent: regions turn as a body, least estimated support. Paper: as published."));
   par.addParam(RichInt("maxIterations", defaults.steps.max_iterations, "Max iterations",
-                       "The largest number of local/global iterations; the run ends sooner when the risky area "
-                       "stops falling. 0 only embeds the mesh and writes it back."));
-  par.addParam(RichFloat("maxDeviation", float(defaults.budget.share_percent().value_or(0.0)), "Deviation budget (%)",
-                         "The farthest any vertex may move, as a percentage of the bounding box diagonal. It is a "
-                         "constraint, not a stopping rule: the part of a step that would take a vertex further is "
-                         "rolled back, and the run goes on. 0: no budget."));
+                       "Upper limit; the run stops sooner when the risky area stops falling."));
+  par.addParam(meshlab_api::RichAbsPerc("maxDeviation", float(defaults.budget.mm(diag).value_or(0.0)), 0.0f, diag,
+                                         "Deviation budget",
+                                         "Farthest any vertex may move (mm, or % of the bbox diagonal); 0: none."));
+  par.addParam(RichFloat("maxCreases", float(defaults.result.max_crease_share_pct.value_or(0.0)), "Crease limit (%)",
+                         "Largest creased share of the edge length; 0: no limit. Coherent only."));
+  par.addParam(RichFloat("minSaving", float(defaults.result.min_support_saving_pct), "Least saving (%)",
+                         "Keep the input unless support falls by this much; 0: any. Coherent only."));
   par.addParam(RichBool("allowStretch", !defaults.hold_proportions, "Allow stretch",
-                        "Off (default): the part keeps its size and proportions, and what lies away from the "
-                        "overhangs that need support stays where it was. On: the whole part may move, and it may "
-                        "come back taller and thinner (which buys little support). The Paper method always lets "
-                        "it stretch."));
+                        "Let the whole part move; it may come back taller and thinner."));
   par.addParam(RichInt("maxK", defaults.steps.max_k, "Max proxies per tetrahedron",
-                       "When no single rotation can make every face in a tetrahedron self-supporting, its faces "
-                       "are clustered into at most this many proxy normals (area-weighted K-means)."));
+                       "K-means proxy normals per tetrahedron when no single rotation fits."));
   par.addParam(RichBool("preserveSelection", false, "Preserve selection as rigid features",
-                        "Each connected piece of the current face selection moves as one rigid body (the paper's "
-                        "&sect;IV-B), so a feature you care about keeps its shape. The result's selection is then "
-                        "the still-risky faces, as always."));
+                        "Each piece of the face selection moves as one rigid body."));
   par.addParam(RichBool("optimizeOrientation", false, "Optimize the orientation first",
-                        "First turn the part into the pose that needs the least support (as Print Orientation "
-                        "does, Normal effort), then slim it there. The print direction above is then ignored: "
-                        "the result is in the new pose, +Z up, resting on z = 0, and the displacement counts "
-                        "only the deformation."));
+                        "Turn the part into its least-support pose first; ignores the print direction."));
 }
 
 namespace {
@@ -133,6 +113,11 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
       throw FilterFailure("'Preserve selection as rigid features' is on but no face is selected; "
                           "select the features to keep rigid, or turn the option off");
   }
+  const slim::ResultChoiceOptions choice = slim::method_applied(options).result;  // what the method reads
+  run.info(QString("Support Slimming: crease limit %1, least saving %2%")
+               .arg(choice.max_crease_share_pct ? QString::asprintf("%.3g%% of the edge length", *choice.max_crease_share_pct)
+                                                : QString("none"))
+               .arg(choice.min_support_saving_pct, 0, 'g', 3));
   if (run.progress != nullptr) {
     // MeshLab's progress bar; a host whose callback returns false cancels the run.
     options.progress = [cb = run.progress](double fraction, const std::string& message) {
@@ -149,12 +134,14 @@ void apply_support_slimming(MeshDocument& md, const RichParameterList& par, Filt
   const slim::OrientedSlimming job =
       layer.run([&](const slim::Surface& surface) { return slim::slim_as_asked(surface, options, orientation); });
   const slim::SlimmingResult& r = job.slimming;
-  const Eigen::VectorXd displacement = layer.view.to_input(r.displacement);
+  const slim::SlimmingFigures figures = slim::slimming_figures(job.posed, r, slim::bbox_diagonal(layer.view.surface.V));
+  const Displacement displacement{layer.view.to_input(r.displacement),
+                                  figures.budget_mm > 0.0 ? figures.budget_mm : figures.max_displacement_mm};
   add_result_layer(md, input, "slimmed", orient ? ResultFrame::PrintPose : ResultFrame::Input, layer.positions(r.surface.V),
                    r.after.quality, r.after.risky, &displacement);
   if (orient) log_orientation(run, "Support Slimming", job.orientation, false);  // slimming notes it below
 
-  log_slimming(run, r, slim::slimming_figures(job.posed, r, slim::bbox_diagonal(layer.view.surface.V)), orient);
+  log_slimming(run, r, figures, orient);
   if (const auto size = slim::print_size_warning(layer.view.surface.V))
     run.warning(QString("Support Slimming: ") + size->c_str() +
                 "; scale it first with Filters > Normals, Curvatures and Orientation > Transform: Scale, Normalize");

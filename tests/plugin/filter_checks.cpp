@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <common/filterscript.h>
 
 #include "core/geometry/welded_view.h"
@@ -111,5 +113,12 @@ RichParameterList example_script_params(const QString& file, const QString& filt
 int progress_reports = 0;
 
 bool cancel_at_second_report(int, const char*) { return ++progress_reports < 2; }
+
+double dialog_budget_mm(const DeviationBudget& budget, const Surface& s) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (Eigen::Index v = 0; v < s.V.rows(); ++v)
+    if (s.V.row(v).allFinite()) lo = lo.cwiseMin(s.V.row(v).transpose()), hi = hi.cwiseMax(s.V.row(v).transpose());
+  return lo.x() <= hi.x() ? budget.mm((hi - lo).norm()).value_or(0.0) : 0.0;
+}
 
 }  // namespace slim::test

@@ -8,6 +8,7 @@
 #include <QString>
 #include <QStringList>
 
+#include "core/optimizer/slimming_options.h"
 #include "core/orientation/orientation.h"
 #include "core/print/overhang.h"
 #include "meshlab_api.h"
@@ -34,6 +35,10 @@ void expect_slimmed_layer(const MeshModel& input, const MeshModel& out, const st
 // the filter's `log` lists the top five poses and the proxy and risky area before and after.
 void expect_oriented_layer(const MeshModel& input, const MeshModel& out, const std::vector<vcg::Point3f>& original,
                            const OrientationOptions& options, const QStringList& log);
+
+// A deviation budget as the dialog's absolute-or-percentage parameter holds it: mm, its share of
+// the bounding-box diagonal of the surface's finite vertices (0: none, or no finite vertex).
+double dialog_budget_mm(const DeviationBudget& budget, const Surface& s);
 
 // The parameters of `filter` in one of our examples/*.mlx, read by this MeshLab's script parser.
 RichParameterList example_script_params(const QString& file, const QString& filter);

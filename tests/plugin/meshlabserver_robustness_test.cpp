@@ -16,6 +16,7 @@
 #include "core/geometry/welded_view.h"
 #include "core/orientation/orientation.h"
 #include "core/print/overhang.h"
+#include "filter_checks.h"
 #include "harness.h"
 #include "mesh_io/mesh_io.h"
 #include "support/bad_inputs.h"
@@ -61,7 +62,7 @@ QString slimming_script(const BadInput& c) {
   s = set_value(s, "domain", o.domain == DomainKind::TetGen ? "1" : "0");
   s = set_value(s, "method", o.method == SlimmingMethod::Paper ? "1" : "0");
   s = set_value(s, "maxIterations", QString::number(o.steps.max_iterations));
-  s = set_value(s, "maxDeviation", number(o.budget.share_percent().value_or(0.0)));
+  s = set_value(s, "maxDeviation", number(test::dialog_budget_mm(o.budget, c.surface)));
   s = set_value(s, "maxK", QString::number(o.steps.max_k));
   s = set_value(s, "allowStretch", o.hold_proportions ? "false" : "true");
   return s;

@@ -19,6 +19,7 @@
 #include "core/geometry/welded_view.h"
 #include "core/orientation/orientation.h"
 #include "core/print/overhang.h"
+#include "filter_checks.h"
 #include "harness.h"
 #include "support/bad_inputs.h"
 #include "support/shapes.h"
@@ -68,7 +69,7 @@ RichParameterList slimming_params(PluginHarness& h, MeshDocument& md, const BadI
   p.setValue("domain", EnumValue(o.domain == DomainKind::TetGen ? 1 : 0));
   p.setValue("method", EnumValue(o.method == SlimmingMethod::Paper ? 1 : 0));
   p.setValue("maxIterations", IntValue(o.steps.max_iterations));
-  p.setValue("maxDeviation", FloatValue(float(o.budget.share_percent().value_or(0.0))));
+  p.setValue("maxDeviation", AbsPercValue(float(test::dialog_budget_mm(o.budget, c.surface))));
   p.setValue("maxK", IntValue(o.steps.max_k));
   p.setValue("allowStretch", BoolValue(!o.hold_proportions));
   p.setValue("preserveSelection", BoolValue(c.preserve_selection));
@@ -261,8 +262,8 @@ const ScriptFault kScriptFaults[] = {
     {"missing parameter", [](QString s) { return s.remove(QRegularExpression(R"(\s*<Param[^>]*name="alphaMax"[^>]*/>)")); },
      "'alphaMax' (Self-supporting angle (deg)) is missing"},
     {"unreadable value (dropped by MeshLab)",
-     [](QString s) { return s.replace(R"(name="maxDeviation" value="5")", R"(name="maxDeviation" value="five")"); },
-     "'maxDeviation' (Deviation budget (%)) is missing"},
+     [](QString s) { return s.replace(R"(name="maxDeviation" value="0.7879")", R"(name="maxDeviation" value="five")"); },
+     "'maxDeviation' (Deviation budget) is missing"},
     {"wrong type", [](QString s) { return s.replace(R"(type="RichFloat" name="alphaMax")", R"(type="RichInt" name="alphaMax")"); },
      "is a RichInt, but it must be a RichFloat"},
     {"absolute value given as a plain float",

@@ -109,7 +109,7 @@ TEST(Plugin, BadParametersFailWithoutTouchingTheLayer) {
   EXPECT_TRUE(h.lastError().contains("print direction")) << h.lastError().toStdString();
   // A negative budget is refused, not taken as "no budget"; the document keeps its one layer.
   params = h.defaults(kSlimming, md);
-  params.setValue("maxDeviation", FloatValue(-1.0f));
+  params.setValue("maxDeviation", AbsPercValue(-1.0f));
   EXPECT_FALSE(h.apply(kSlimming, md, params));
   EXPECT_TRUE(h.lastError().contains("deviation budget must be >= 0")) << h.lastError().toStdString();
   EXPECT_EQ(md.meshList.size(), 1);

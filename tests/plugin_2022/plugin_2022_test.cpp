@@ -7,6 +7,7 @@
 // the document untouched. Only the API differs: errors arrive as MLException.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include <common/plugins/meshlab_plugin_type.h>
 #include <common/plugins/plugin_manager.h>
 
+#include "core/optimizer/slimming_options.h"
 #include "core/orientation/orientation.h"
 #include "core/print/overhang.h"
 #include "core/support_model/support_model.h"
@@ -106,6 +108,31 @@ TEST_F(Plugin2022, SupportSlimmingAddsASlimmedLayerAndLeavesTheInputAlone) {
   EXPECT_LT(h.outputs().at("risky_area_after").toDouble(), h.outputs().at("risky_area_before").toDouble());
 }
 
+// The budget is this API's absolute-or-percentage parameter (RichAbsPerc, RichPercentage from
+// 2023.12 on) in mm, defaulting to the core's share of the bbox diagonal; the slimmed layer's
+// vertex colours are VCG's ramp of the displacement, blue unmoved to red at the budget.
+TEST_F(Plugin2022, TheBudgetIsAnAbsoluteOrPercentageValueAndTheColoursShowTheMove) {
+  MeshModel* input = add_bunny();
+  const RichParameterList params = h.defaults(kSlimming, md);
+  const RichParameter& budget = params.getParameterByName("maxDeviation");
+  EXPECT_NE(dynamic_cast<const meshlab_api::RichAbsPerc*>(&budget), nullptr) << budget.stringType().toStdString();
+  const double budget_mm = params.getAbsPerc("maxDeviation");
+  EXPECT_NEAR(budget_mm, *SlimmingOptions().budget.mm(input->cm.bbox.Diag()), 1e-6 * budget_mm);
+  EXPECT_EQ(params.getFloat("maxCreases"), Scalarm(ResultChoiceOptions().max_crease_share_pct.value_or(0.0)));
+  EXPECT_EQ(params.getFloat("minSaving"), Scalarm(ResultChoiceOptions().min_support_saving_pct));
+  ASSERT_TRUE(h.apply(kSlimming, md, params)) << h.lastError().toStdString();
+  const MeshModel& out = *md.mm();
+  ASSERT_TRUE(out.hasDataMask(MeshModel::MM_VERTCOLOR));
+  Scalarm most = 0;
+  for (const CVertexO& v : out.cm.vert) {
+    ASSERT_EQ(v.cC(), vcg::Color4b::ColorRamp(float(budget_mm), 0.0f, float(v.cQ())));
+    most = std::max(most, v.cQ());
+  }
+  EXPECT_GT(most, 0);
+  EXPECT_LE(most, budget_mm * 1.0001);
+  EXPECT_FALSE(input->hasDataMask(MeshModel::MM_VERTCOLOR));
+}
+
 TEST_F(Plugin2022, BadParametersFailWithTheirReasonAndTouchNothing) {
   MeshModel* m = add_bunny();
   const auto original = positions(*m);
@@ -124,6 +151,12 @@ TEST_F(Plugin2022, BadParametersFailWithTheirReasonAndTouchNothing) {
       {"memory guard", kSlimming, [](RichParameterList& p) { p.setValue("resolution", IntValue(100000)); }, "resolution"},
       {"rigid features without a selection", kSlimming,
        [](RichParameterList& p) { p.setValue("preserveSelection", BoolValue(true)); }, "no face is selected"},
+      {"negative budget", kSlimming, [](RichParameterList& p) { p.setValue("maxDeviation", FloatValue(-1.0f)); },
+       "the deviation budget must be >= 0 mm"},
+      {"crease limit over 100%", kSlimming, [](RichParameterList& p) { p.setValue("maxCreases", FloatValue(101.0f)); },
+       "the crease limit must be in [0, 100] %"},
+      {"negative least saving", kSlimming, [](RichParameterList& p) { p.setValue("minSaving", FloatValue(-1.0f)); },
+       "the least saving must be in [0, 100) %"},
   };
   for (const Case& c : cases) {
     RichParameterList params = h.defaults(c.filter, md);

@@ -93,7 +93,7 @@ class PyMeshLabPluginTest(unittest.TestCase):
     def test_support_slimming_makes_a_layer_with_less_risky_area(self):
         alpha, budget = 50.0, 4.0
         out = self.ms.apply_filter(NAMES["Support Slimming"], alphamax=alpha, resolution=12, maxiterations=30,
-                                   maxdeviation=budget, method=0)
+                                   maxdeviation=pymeshlab.PercentageValue(budget), method=0)
         self.assertEqual(self.ms.mesh_number(), 2)
         self.assertNotEqual(self.ms.current_mesh_id(), self.input_id)
         self.assert_input_untouched()
@@ -112,6 +112,10 @@ class PyMeshLabPluginTest(unittest.TestCase):
         self.assertLessEqual(out["iterations"], 30)
         moved = np.linalg.norm(W - self.V, axis=1)
         self.assertAlmostEqual(out["max_displacement"], moved.max(), delta=1e-5)
+        # The budget given as a percentage is of the bbox diagonal (MeshLab's absolute-or-percentage value).
+        diagonal = np.linalg.norm(self.V.max(axis=0) - self.V.min(axis=0))
+        self.assertAlmostEqual(out["budget_mm"], budget / 100.0 * diagonal, delta=1e-6 * diagonal)
+        self.assertLessEqual(moved.max(), out["budget_mm"] * (1.0 + 1e-6))
         np.testing.assert_allclose(result.vertex_scalar_array(), moved, atol=1e-5)  # vertex quality
         diagonal = np.linalg.norm(self.V.max(axis=0) - self.V.min(axis=0))
         self.assertLessEqual(moved.max(), budget / 100.0 * diagonal * (1 + 1e-6))
@@ -146,9 +150,10 @@ class PyMeshLabPluginTest(unittest.TestCase):
         self.assertEqual(out["folded_faces"], 0)
 
     def test_allow_stretch_lets_the_whole_part_move(self):
-        held = self.ms.apply_filter(NAMES["Support Slimming"], resolution=12, maxdeviation=5.0)
+        held = self.ms.apply_filter(NAMES["Support Slimming"], resolution=12, maxdeviation=pymeshlab.PercentageValue(5.0))
         self.ms.set_current_mesh(self.input_id)
-        free = self.ms.apply_filter(NAMES["Support Slimming"], resolution=12, maxdeviation=5.0, allowstretch=True)
+        free = self.ms.apply_filter(NAMES["Support Slimming"], resolution=12, maxdeviation=pymeshlab.PercentageValue(5.0),
+                                  allowstretch=True)
         self.assertEqual(self.ms.mesh_number(), 3)
         self.assert_input_untouched()
         self.assertLessEqual(held["affine_departure_pct"], 1.0)
