@@ -3,11 +3,16 @@
 #   open MESH, Filters -> Smoothing, Fairing and Deformation -> Support Slimming, Apply, Close,
 #   then File -> Export Mesh As (Ctrl+Shift+E) on the current layer.
 # Checks on the way: the filter's dialog is titled "Support Slimming"; its last parameter, the
-# "Optimize the orientation first" checkbox, is on screen whole (see check_last_parameter); the
-# filter logs its result; the export dialog is titled 'Save "<name>_slimmed" Layer', i.e. the
-# current layer is the new one.
-# Keeps OUT/dialog.png, OUT/meshlab_gui.png (both layers listed), OUT/layer.ply (the exported new
-# layer) and OUT/meshlab.log; OUT/failure.png when a step fails. Every wait has a timeout.
+# "Optimize the orientation first" checkbox, is on screen whole (see check_last_parameter), also
+# with every parameter's help shown (the Help button), and the dialog then still fits the screen;
+# the least saving, the crease limit and the deviation budget's percentage field are edited with
+# the keyboard (see edit_field) and the filter logs the values typed, the budget typed in % coming
+# back in mm (MeshLab's absolute-or-percentage widget); the filter logs its result; the export
+# dialog is titled 'Save "<name>_slimmed" Layer', i.e. the current layer is the new one; the new
+# layer is drawn in its displacement colours right after Apply (see ramp_blue).
+# Keeps OUT/dialog.png, OUT/dialog_help.png (help shown, values edited), OUT/meshlab_gui.png (both
+# layers listed, the new one in its displacement colours), OUT/layer.ply (the exported new layer)
+# and OUT/meshlab.log; OUT/failure.png when a step fails. Every wait has a timeout.
 #
 #   gui_check.sh PREFIX MESH OUT SMOOTHING_INDEX
 # PREFIX: a private MeshLab prefix (scripts/make_prefix.sh) whose plugins include ours.
@@ -127,6 +132,46 @@ check_last_parameter() {
   echo "last parameter visible: yes"
 }
 
+# ramp_blue PNG: how many of its pixels are the blue end of the displacement colour ramp (a vertex
+# that did not move, lit); MeshLab's background and default grey have none of them.
+ramp_blue() {
+  convert "$1" -fx "(r<0.2&&g<0.2&&b>0.7)?1:0" -format "%[fx:round(mean*w*h)]" info:
+}
+# edit_field WINDOW BACKTABS TEXT: from Apply (the focus), BACKTABS times Shift+Tab reaches a
+# field; its text is replaced by TEXT and the focus goes back to Apply. Backwards from Apply the
+# dialog's tab order is: Close, Help, Optimize the orientation first, Preserve selection, Max
+# proxies, Allow stretch, Least saving, Crease limit, then the budget's percentage and mm fields.
+edit_field() {
+  xdotool windowfocus --sync "$1"
+  keys shift+Tab "$2"
+  xdotool key ctrl+a
+  xdotool type --delay 20 "$3"
+  keys Tab "$2"
+  sleep 0.3
+}
+# The help shown: the Help button (two Shift+Tabs from Apply) shows every parameter's help line
+# below the dialog's text; the dialog must still fit the 1280x1024 screen with its last parameter
+# whole (check_last_parameter again, now with the help lines in every row).
+show_help() {
+  # shellcheck disable=SC2034  # getwindowgeometry --shell sets all six
+  local WIDTH HEIGHT X Y SCREEN WINDOW before
+  eval "$(xdotool getwindowgeometry --shell "$1")"
+  before="${WIDTH}x${HEIGHT}"
+  xdotool windowfocus --sync "$1"
+  keys shift+Tab 2
+  xdotool key space
+  keys Tab 2
+  sleep 1
+  eval "$(xdotool getwindowgeometry --shell "$1")"
+  echo "dialog with help: ${WIDTH}x${HEIGHT}+${X}+${Y} (without: $before)"
+  [ "${WIDTH}x${HEIGHT}" != "$before" ] || fail "the Help button changed nothing: no help lines shown"
+  [ "$X" -ge 0 ] && [ "$Y" -ge 0 ] && [ $((X + WIDTH)) -le 1280 ] && [ $((Y + HEIGHT)) -le 1024 ] ||
+    fail "with its help shown the dialog (${WIDTH}x${HEIGHT}+${X}+${Y}) does not fit the 1280x1024 screen"
+  import -window root "$out/dialog_help.png"
+  check_last_parameter "$1"
+  echo "help fits: yes"
+}
+
 "$prefix/bin/meshlab" "$mesh" >"$log" 2>&1 &
 meshlab=$!
 trap 'kill "$meshlab" 2>/dev/null || true; wait "$meshlab" 2>/dev/null || true; rm -rf "$home"' EXIT
@@ -134,6 +179,7 @@ trap 'kill "$meshlab" 2>/dev/null || true; wait "$meshlab" 2>/dev/null || true; 
 main="$(wait_window '^MeshLab [0-9.]+ ' 60)" || fail "no MeshLab window within 60 s"
 wait_log 'All files opened' 60 || fail "MeshLab did not open $mesh (see $log)"
 sleep 1
+import -window root "$out/opened.png"
 
 # Filters (Alt+L) -> the 7th submenu below "Show current filter script" (MeshLab 2020.09's fixed
 # layout: Selection, Cleaning, Create, Remeshing, Polygonal, Color, Smoothing) -> the filter.
@@ -149,12 +195,23 @@ dialog="$(wait_window '^Support Slimming$' 20)" || fail "Filters -> Smoothing, F
 sleep 0.5
 import -window root "$out/dialog.png"
 check_last_parameter "$dialog"
+edit_field "$dialog" 7 0    # Least saving (%): any saving
+edit_field "$dialog" 8 2.5  # Crease limit (%)
+edit_field "$dialog" 9 4    # Deviation budget, its percentage field: 4% of the bbox diagonal
+show_help "$dialog"
 
-press_button "$dialog" 1  # Apply, with the dialog's defaults
+press_button "$dialog" 1  # Apply, with the defaults but for the three values edited
 wait_log 'LOG: [0-9]+ Support Slimming: risky area' 120 || fail "the filter logged no result within 120 s (see $log)"
 wait_log 'Applied filter Support Slimming' 30 || fail "MeshLab did not finish the filter (see $log)"
 press_button "$dialog" 0  # Close
-sleep 0.5
+sleep 1
+# The new layer is drawn in its vertex colours at once: far more ramp-blue pixels than before.
+import -window root "$out/applied.png"
+blue_before="$(ramp_blue "$out/opened.png")" blue_after="$(ramp_blue "$out/applied.png")"
+rm -f "$out/opened.png" "$out/applied.png"
+echo "ramp-blue pixels: $blue_before before, $blue_after after Apply"
+[ "$blue_after" -gt $((blue_before + 2000)) ] || fail "the new layer is not drawn in its displacement colours"
+echo "displacement colours shown: yes"
 
 # Export the current layer: its dialog names the layer, which must be the filter's new one.
 xdotool windowfocus --sync "$main"
