@@ -17,12 +17,13 @@ namespace {
 const char* kUsage = R"(usage: support-slim IN -o OUT [options]
 
 Reshapes a mesh so that it needs less support material when 3D printed (local/global
-minimal-rotation optimizer). Reads and writes PLY, STL, OBJ and OFF. OUT has IN's vertex list and
-face list in IN's order: nothing is welded, dropped or reordered (STL, which stores each
-triangle's corners apart, is welded when read), and IN's vertex colours, texture coordinates,
+minimal-rotation optimizer). Reads and writes PLY, STL, OBJ, OFF and 3MF. OUT has IN's vertex
+list and face list in IN's order: nothing is welded, dropped or reordered (STL, which stores each
+triangle's corners apart, is welded when read; a 3MF's build is read as one plate in mm and
+written back with its unit, objects and placements), and IN's vertex colours, texture coordinates,
 vertex quality and selection pass through; vertex normals too, recomputed where a vertex moved.
 The run replaces three face attributes: face quality becomes n.d + sin(alpha_max) (negative =
-still risky; PLY), face colour its ramp (PLY, OFF, STL), and the face selection the still-risky
+still risky; PLY), face colour its ramp (PLY, OFF, STL, 3MF), and the face selection the still-risky
 faces (PLY). OUT is in the input's frame (no rescaling, no recentring), or with --orient in the
 print pose the search chose. See docs/files-and-attributes.md.
 
@@ -30,7 +31,7 @@ Exit status: 0 done (also when the part comes back unchanged), 1 the run failed,
 flag, a value or an output path), 3 a bad input file (missing, unreadable, not a mesh, or a mesh
 the run refuses).
 
-The mesh is taken in millimetres at the size it will print (a file does not say its unit): a
+The mesh is taken in millimetres at the size it will print (only a 3MF says its unit): a
 part under 5 mm or over 1 m across gets a warning, and --scale F scales IN first (OUT is then
 scaled too).
 

@@ -40,6 +40,12 @@ void print_mesh_line(const io::MeshFile& file, const WeldedView& view) {
   if (file.format == io::MeshFormat::Stl) {
     std::printf("  mesh            %lld triangles; STL stores each corner apart: %lld corners welded into %lld vertices\n", nf,
                 static_cast<long long>(file.stl_corners), nv);
+  } else if (file.format == io::MeshFormat::ThreeMf) {
+    const io::ThreeMfBuild& b = file.build;
+    std::printf("  mesh            %lld vertices, %lld faces: %zu object%s placed by the 3MF build", nv, nf, b.parts.size(),
+                b.parts.size() == 1 ? "" : "s");
+    if (b.millimetres_per_unit != 1.0) std::printf(", read in mm (the file's unit is %g mm)", b.millimetres_per_unit);
+    std::printf(";\n                  a 3MF is written back with the same unit, objects and placements\n");
   } else {
     std::printf("  mesh            %lld vertices, %lld faces, written back as read (same lists, same order)\n", nv, nf);
     if (view.merged() > 0)

@@ -42,4 +42,11 @@ void write_obj(const std::string& path, const MeshFile& source, const Points& V)
 MeshFile read_off(const std::string& path, const std::string& bytes);
 void write_off(const std::string& path, const MeshFile& source, const Points& V, const FaceExtras& results);
 
+// 3MF through lib3mf (threemf_file.cpp).
+// The package's bytes with root relationships to missing parts dropped, which lib3mf 1.x would
+// refuse (threemf_package.cpp); the bytes as given when there is none or they are not a zip.
+std::string readable_3mf_package(const std::string& bytes);
+MeshFile read_3mf(const std::string& path, const std::string& bytes);
+void write_3mf(const std::string& path, const MeshFile& source, const Points& V, const FaceExtras& results);
+
 }  // namespace slim::io::detail

@@ -112,7 +112,8 @@ MeshFormat format_of(const std::string& path) {
   if (ext == "stl") return MeshFormat::Stl;
   if (ext == "obj") return MeshFormat::Obj;
   if (ext == "off") return MeshFormat::Off;
-  throw std::runtime_error(path + ": unknown mesh format (the extension must be .ply, .stl, .obj or .off)");
+  if (ext == "3mf") return MeshFormat::ThreeMf;
+  throw std::runtime_error(path + ": unknown mesh format (the extension must be .ply, .stl, .obj, .off or .3mf)");
 }
 
 MeshFile read_mesh(const std::string& path) {
@@ -130,6 +131,7 @@ MeshFile parse_mesh(const std::string& path, const std::string& bytes) {
     case MeshFormat::Stl: return read_stl(path, bytes);
     case MeshFormat::Obj: return detail::read_obj(path, bytes);
     case MeshFormat::Off: return detail::read_off(path, bytes);
+    case MeshFormat::ThreeMf: return detail::read_3mf(path, bytes);
   }
   throw std::logic_error("parse_mesh: unhandled format");
 }
@@ -147,6 +149,7 @@ void write_mesh(const std::string& path, const MeshFile& source, const Points& V
     case MeshFormat::Stl: return vcg_adapters::write_stl(path, s, results.quality);
     case MeshFormat::Obj: return detail::write_obj(path, source, V);
     case MeshFormat::Off: return detail::write_off(path, source, V, results);
+    case MeshFormat::ThreeMf: return detail::write_3mf(path, source, V, results);
   }
 }
 

@@ -1,4 +1,4 @@
-// Mesh files <-> slim::Surface for the CLI and the tests (PLY, STL, OBJ, OFF). The plugin does not
+// Mesh files <-> slim::Surface for the CLI and the tests (PLY, STL, OBJ, OFF, 3MF). The plugin does not
 // use this: MeshLab does its own IO. docs/files-and-attributes.md is the user's account of it.
 //
 // The contract: what goes in comes out.
@@ -9,6 +9,11 @@
 //     its first corner, in order (OBJ output keeps the polygon itself).
 //   * STL stores each triangle's three corners on their own; the reader welds corners with equal
 //     coordinates, in order of first appearance, and says how many corners it read.
+//   * 3MF (through lib3mf) holds objects placed by a build: the surface is every mesh the build
+//     places, in build order, each moved by its item's transform (composed with its components')
+//     and scaled from the file's unit to millimetres. ThreeMfBuild remembers each placement, and a
+//     3MF written from it gets the same unit, objects, names and transforms back, each object's
+//     own vertices moved as its part of the surface moved.
 //   * Attributes the file carries come back out on write_mesh (MeshFile holds them): see
 //     VertexAttributes / FaceAttributes. Face quality, face colour and face selection are the
 //     ones a run replaces (FaceExtras); vertex normals are recomputed when a vertex moved.
@@ -36,9 +41,9 @@
 
 namespace slim::io {
 
-enum class MeshFormat { Ply, Stl, Obj, Off };
+enum class MeshFormat { Ply, Stl, Obj, Off, ThreeMf };
 
-// The format an extension (.ply, .stl, .obj, .off, any case) names; throws std::runtime_error
+// The format an extension (.ply, .stl, .obj, .off, .3mf, any case) names; throws std::runtime_error
 // naming the path for any other.
 MeshFormat format_of(const std::string& path);
 
@@ -64,6 +69,22 @@ struct FaceAttributes {
 
 struct ObjRecords;  // an OBJ file's lines, for writing it back as it was (obj_file.cpp)
 
+// One mesh a 3MF build places: its rows in MeshFile::surface and where it sits. `transform` maps
+// the object's own coordinates (file units) to the plate's: [A | a], x -> A x + a, the build
+// item's composed with those of the components it went through.
+struct ThreeMfPart {
+  std::string name;  // the object's name ("" when it has none)
+  Eigen::Index first_vertex = 0, vertex_count = 0, first_face = 0, face_count = 0;
+  Eigen::Matrix<double, 3, 4> transform = Eigen::Matrix<double, 3, 4>::Identity();
+};
+
+// A 3MF file's unit and build; no parts for the other formats.
+struct ThreeMfBuild {
+  int unit = 1;                        // lib3mf's eModelUnit: 0 micron, 1 mm, 2 cm, 3 inch, 4 foot, 5 metre
+  double millimetres_per_unit = 1.0;   // what one file unit is in mm
+  std::vector<ThreeMfPart> parts;
+};
+
 struct MeshFile {
   MeshFormat format = MeshFormat::Ply;
   Surface surface;
@@ -72,11 +93,12 @@ struct MeshFile {
   std::vector<std::string> textures;  // texture file names (PLY "comment TextureFile")
   Eigen::Index stl_corners = 0;       // STL: the corners read (3 per triangle) before welding
   std::shared_ptr<const ObjRecords> obj;  // OBJ: its records (v, vt, vn, f, g, usemtl, ...)
+  ThreeMfBuild build;                     // 3MF: its unit and what its build places
 };
 
 // Per-face results a run writes, replacing the file's own. Empty means "keep the file's".
 struct FaceExtras {
-  Eigen::VectorXd quality;     // #F: written as face quality (PLY) and as the ramp colour (PLY, OFF, STL)
+  Eigen::VectorXd quality;     // #F: written as face quality (PLY) and as the ramp colour (PLY, OFF, STL, 3MF)
   std::vector<bool> selected;  // #F: written as the face selection (PLY)
 };
 

@@ -19,7 +19,7 @@ PACKAGES=(
   qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   libsuitesparse-dev libopenblas0-pthread
-  libtet1.5-dev
+  libtet1.5-dev lib3mf-dev libzip-dev
   meshlab xvfb xauth
   prusa-slicer cura-engine f3d imagemagick xdotool
   openscad assimp-utils

@@ -24,7 +24,7 @@ set -euo pipefail
 PACKAGES=(
   meshlab cmake g++ ninja-build qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev xvfb xauth dpkg-dev help2man
   lib3ds-1-3 libmuparser2v5 libopenctm1 libqhull-r8.0 libxerces-c3.2t64
-  libsuitesparse-dev libopenblas0-pthread libtet1.5-dev
+  libsuitesparse-dev libopenblas0-pthread libtet1.5-dev lib3mf-dev libzip-dev
   libgtest-dev xdotool lintian ccache
 )
 

@@ -24,7 +24,7 @@ set -euo pipefail
 PACKAGES=(
   meshlab cmake g++ ninja-build qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev xvfb xauth dpkg-dev help2man
   lib3ds-1-3 libmuparser2v5 libopenctm1 libqhull-r8.0
-  libsuitesparse-dev libopenblas0-pthread libtet-dev
+  libsuitesparse-dev libopenblas0-pthread libtet-dev lib3mf-dev libzip-dev
   libgtest-dev xdotool lintian ccache
 )
 

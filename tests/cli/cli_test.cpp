@@ -183,7 +183,7 @@ TEST(Cli, BadValuesAndPathsAreRefusedBeforeAnyWork) {
            {bunny + out + " --scale -2", "--scale expects a value > 0, got -2", 2},
            {bunny + " -o '" + (dir / "missing" / "o.ply").string() + "'", "its folder " + (dir / "missing").string() + " does not exist", 2},
            {bunny + " -o '" + dir.string() + "'", "it is a folder", 2},
-           {bunny + " -o '" + (dir / "o.3mf").string() + "'", "unknown mesh format", 2},
+           {bunny + " -o '" + (dir / "o.3ds").string() + "'", "unknown mesh format", 2},
            {bunny + out + " --orient --oriented-output '" + (dir / "missing" / "p.ply").string() + "'", "cannot write the oriented part", 2},
            {"'" + dir.string() + "'" + out, "it is a folder, not a mesh file", 3},
            {"'" + (dir / "missing.ply").string() + "'" + out, "no such file", 3}}) {

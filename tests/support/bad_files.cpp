@@ -135,6 +135,8 @@ std::vector<BadFile> bad_files() {
       {"off_four_dimensional", "4OFF (homogeneous coordinates)", "off", std::string("4OFF\n4 4 0\n") + kTetraVertices,
        "not supported"},
       // ---- neither --------------------------------------------------------------------------------
+      {"threemf_not_a_zip", "an ASCII STL named .3mf", "3mf", kAsciiStlFacet, "not a readable 3MF file"},
+      {"threemf_empty", "an empty file named .3mf", "3mf", "", "not a readable 3MF file"},
       {"unknown_extension", "an ASCII STL named .xyz", "xyz", kAsciiStlFacet, "unknown mesh format"},
   };
   return files;
