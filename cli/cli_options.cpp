@@ -15,6 +15,7 @@ namespace slim::cli {
 namespace {
 
 const char* kUsage = R"(usage: support-slim IN -o OUT [options]
+       support-slim IN... --out-dir DIR [options]
 
 Reshapes a mesh so that it needs less support material when 3D printed (local/global
 minimal-rotation optimizer). Reads and writes PLY, STL, OBJ, OFF and 3MF. OUT has IN's vertex
@@ -29,7 +30,8 @@ print pose the search chose. See docs/files-and-attributes.md.
 
 Exit status: 0 done (also when the part comes back unchanged), 1 the run failed, 2 bad usage (a
 flag, a value or an output path), 3 a bad input file (missing, unreadable, not a mesh, or a mesh
-the run refuses).
+the run refuses). A batch (--out-dir) exits 0 when every file was done, 1 when any failed (its
+row says why), 2 for bad usage before any work.
 
 The mesh is taken in millimetres at the size it will print (only a 3MF says its unit): a
 part under 5 mm or over 1 m across gets a warning, and --scale F scales IN first (OUT is then
@@ -72,7 +74,11 @@ options:
   --orient-effort fast|normal|thorough
                            how many directions the orientation search tries         [normal]
   --oriented-output FILE   with --orient: also write the oriented part before slimming
-  --report FILE.json       also write every figure of the summary as JSON (docs/usage.md)
+  --out-dir DIR            a batch: slim each IN into DIR/<name>_slimmed.<its extension>, go on
+                           past a file that fails, and print one table (file, support, shape,
+                           status); exit 1 when any file failed
+  --report FILE.json       also write every figure of the summary as JSON (docs/usage.md); with
+                           --out-dir, one JSON object per line, per file
   --threads N              OpenMP threads (the result does not depend on it)
   --quiet                  no progress on stderr
   --verbose                the run's internals in the summary too: the proxies, the domain and
@@ -124,6 +130,20 @@ Eigen::Vector3d vector3(const std::string& flag, const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
+// One input and -o, or any number of inputs and --out-dir; what names one file fits one input.
+void check_files_asked(CliOptions& c) {
+  if (c.inputs.empty()) die("no input mesh given (see --help)");
+  if (!c.batch()) {
+    if (c.inputs.size() > 1) die("more than one input mesh given: " + c.inputs[0] + " and " + c.inputs[1] + " (--out-dir DIR runs each)");
+    if (c.out.empty()) die("no output given: use -o OUT (or --out-dir DIR)");
+    c.in = c.inputs[0];
+    return;
+  }
+  if (!c.out.empty()) die("-o names one output; --out-dir names each after its input: give one of them");
+  if (!c.oriented_out.empty()) die("--oriented-output names one file; it does not go with --out-dir");
+  if (!c.features_file.empty() && c.inputs.size() > 1) die("--features names the faces of one mesh; it does not go with several inputs");
+}
+
 }  // namespace
 
 std::vector<bool> read_face_ids(const std::string& path, long long faces) {
@@ -163,6 +183,7 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
       std::cout << "support-slim " << version() << "\n";
       std::exit(0);
     } else if (a == "-o" || a == "--output") c.out = value(i);
+    else if (a == "--out-dir") c.out_dir = value(i);
     else if (a == "--scale") c.scale = positive(a, number(a, value(i)));
     else if (a == "--angle") o.print.alpha_max_deg = number(a, value(i));
     else if (a == "--dir") o.print.direction = vector3(a, value(i)), dir_given = true;
@@ -202,11 +223,9 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
     else if (a == "--quiet") c.quiet = true;
     else if (a == "--verbose") c.verbose = true;
     else if (!a.empty() && a[0] == '-') die("unknown option " + a + " (see --help)");
-    else if (c.in.empty()) c.in = a;
-    else die("more than one input mesh given: " + c.in + " and " + a);
+    else c.inputs.push_back(a);
   }
-  if (c.in.empty()) die("no input mesh given (see --help)");
-  if (c.out.empty()) die("no output given: use -o OUT");
+  check_files_asked(c);
   if (c.orient && dir_given) die("--orient chooses the print direction itself: leave out --dir");
   if (!c.oriented_out.empty() && !c.orient) die("--oriented-output needs --orient");
   if (creases_given && o.method == SlimmingMethod::Paper)

@@ -7,6 +7,7 @@
 // naming the flag and what it expects; -h prints the usage and exits 0.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,9 @@
 namespace slim::cli {
 
 struct CliOptions {
-  std::string in, out;              // the input mesh and where the result goes (required)
+  std::string in, out;              // the input mesh and where the result goes (one file)
+  std::vector<std::string> inputs;  // every input mesh given, in order
+  std::string out_dir;              // --out-dir: a batch, each input to DIR/<stem>_slimmed.<ext>
   std::string features_file;        // rigid features: face ids, one file
   std::string oriented_out;         // with --orient: the oriented part before slimming
   std::string report;               // --report: the figures as JSON
@@ -24,6 +27,8 @@ struct CliOptions {
   bool features_from_mesh = false, quiet = false, orient = false, verbose = false;
   OrientationEffort effort = OrientationEffort::Normal;
   SlimmingOptions slimming;
+
+  bool batch() const { return !out_dir.empty(); }
 };
 
 // The exit codes (docs/usage.md). Bad usage: an unknown flag, a value out of its range, an output
@@ -34,6 +39,12 @@ inline constexpr int kExitRunFailed = 1, kExitUsage = 2, kExitBadInputFile = 3;
 
 // One line on stderr ("support-slim: " and the reason), then exit with `code`.
 [[noreturn]] void die(const std::string& reason, int code = kExitUsage);
+
+// The same reason and code, thrown where one file of a batch may fail and the others go on.
+struct Refusal : std::runtime_error {
+  int code;
+  Refusal(const std::string& reason, int exit_code) : std::runtime_error(reason), code(exit_code) {}
+};
 
 CliOptions parse_arguments(const std::vector<std::string>& args);
 

@@ -120,6 +120,8 @@ std::string json_number(double v) {
   return os.str();
 }
 
+}  // namespace
+
 std::string json_string(const std::string& text) {
   std::string s = "\"";
   for (unsigned char ch : text) {
@@ -132,8 +134,6 @@ std::string json_string(const std::string& text) {
   }
   return s + "\"";
 }
-
-}  // namespace
 
 // The verdict, on the summary's first line: what the run did to the support, or why the part
 // came back unchanged.
@@ -219,7 +219,7 @@ std::string settings_json(const SlimmingOptions& asked, double scale) {
 
 }  // namespace
 
-void write_report(const std::string& path, const RunReport& run) {
+std::string report_json(const RunReport& run) {
   const SlimmingFigures& f = run.figures;
   const SlimmingResult& r = run.job->slimming;
   std::vector<std::pair<const char*, double>> numbers = named_figures(f);
@@ -241,10 +241,27 @@ void write_report(const std::string& path, const RunReport& run) {
   }
   for (const auto& [key, value] : numbers) os << ",\n  \"" << key << "\": " << json_number(value);
   os << "\n}\n";
+  return os.str();
+}
+
+std::string one_line(const std::string& json) {
+  std::string line;  // a raw newline only separates (strings carry theirs escaped): it and its indent become one space
+  for (size_t i = 0; i < json.size(); ++i) {
+    if (json[i] != '\n') {
+      line += json[i];
+      continue;
+    }
+    while (i + 1 < json.size() && json[i + 1] == ' ') ++i;
+    if (i + 1 < json.size()) line += ' ';
+  }
+  return line;
+}
+
+void write_text(const std::string& path, const std::string& text, const std::string& what) {
   std::ofstream file(path);
-  file << os.str();
+  file << text;
   file.close();
-  if (!file) throw std::runtime_error("cannot write the report " + path);
+  if (!file) throw std::runtime_error("cannot write " + what + " " + path);
 }
 
 }  // namespace slim::cli

@@ -11,6 +11,7 @@
 
 #include <unistd.h>
 
+#include "batch.h"
 #include "cli_options.h"
 #include "core/geometry/welded_view.h"
 #include "core/optimizer/slimming_figures.h"
@@ -49,13 +50,14 @@ bool print_progress(double fraction, const std::string& message) {
 
 // Orientation first (--orient): the part turns rigidly into its print pose and is slimmed there,
 // so the slimming's displacement and volume figures count the deformation alone.
-OrientedSlimming run_job(const cli::CliOptions& c, const io::MeshFile& file, const WeldedView& view) {
+OrientedSlimming run_job(const cli::CliOptions& c, const SlimmingOptions& options, const io::MeshFile& file,
+                          const WeldedView& view) {
   if (c.orient && !c.quiet) std::fprintf(stderr, "[orient] searching the print direction\n");
   const std::optional<OrientationOptions> orientation =
       c.orient ? std::optional<OrientationOptions>(with_effort(c.effort)) : std::nullopt;
-  OrientedSlimming job = slim_as_asked(view.surface, c.slimming, orientation);
+  OrientedSlimming job = slim_as_asked(view.surface, options, orientation);
   if (!c.oriented_out.empty()) {
-    const OverhangReport pose = print_pose_overhang(job.posed, job.orientation, c.slimming.print.alpha_max_deg);
+    const OverhangReport pose = print_pose_overhang(job.posed, job.orientation, options.print.alpha_max_deg);
     io::write_mesh(c.oriented_out, file, view.positions_to_input(file.surface.V, job.posed.V), {pose.quality, pose.risky});
   }
   return job;
@@ -80,68 +82,90 @@ void check_output(const std::string& path, const std::string& what, bool mesh) {
     cli::die("cannot write " + what + " " + path + ": its folder " + folder.string() + " is not writable (" + std::strerror(errno) + ")");
 }
 
-void check_files(const cli::CliOptions& c) {
+// The input is a regular readable file of a known format; else a Refusal (bad input file).
+void check_input(const std::string& in) {
   std::error_code error;
   const int bad = cli::kExitBadInputFile;
-  if (!std::filesystem::exists(c.in, error)) cli::die("cannot read " + c.in + ": no such file", bad);
-  if (std::filesystem::is_directory(c.in, error)) cli::die("cannot read " + c.in + ": it is a folder, not a mesh file", bad);
-  if (access(c.in.c_str(), R_OK) != 0) cli::die("cannot read " + c.in + ": " + std::strerror(errno), bad);
+  if (!std::filesystem::exists(in, error)) throw cli::Refusal("cannot read " + in + ": no such file", bad);
+  if (std::filesystem::is_directory(in, error)) throw cli::Refusal("cannot read " + in + ": it is a folder, not a mesh file", bad);
+  if (access(in.c_str(), R_OK) != 0) throw cli::Refusal("cannot read " + in + ": " + std::strerror(errno), bad);
   try {
-    io::format_of(c.in);
+    io::format_of(in);
   } catch (const std::exception& e) {
-    cli::die(e.what(), bad);
+    throw cli::Refusal(e.what(), bad);
   }
-  check_output(c.out, "the result", true);
-  check_output(c.oriented_out, "the oriented part", true);
-  check_output(c.report, "the report", false);
 }
 
-// The mesh as read, scaled and welded, and the options checked against it: a bad file exits
-// kExitBadInputFile, a bad option kExitUsage, each before any work.
-io::MeshFile read_input(cli::CliOptions& c, WeldedView& view) {
+// The mesh as read, scaled and welded, and the options checked against it: a bad file is a
+// Refusal with kExitBadInputFile, a bad option one with kExitUsage, each before any work.
+io::MeshFile read_input(const cli::CliOptions& c, const std::string& in, SlimmingOptions& options, WeldedView& view) {
   io::MeshFile file;
   try {
-    file = io::read_mesh(c.in);
+    file = io::read_mesh(in);
     if (c.scale != 1.0) file.surface.V *= c.scale;  // --scale: the units fixed before anything reads them
     view = weld_coincident(file.surface);
     check_slimming_input(view.surface);
   } catch (const std::exception& e) {
-    cli::die(e.what() + view.vertex_number_note(e.what()), cli::kExitBadInputFile);
+    throw cli::Refusal(e.what() + view.vertex_number_note(e.what()), cli::kExitBadInputFile);
   }
-  if (!c.features_file.empty()) c.slimming.rigid_features = cli::read_face_ids(c.features_file, view.surface.F.rows());
+  if (!c.features_file.empty()) options.rigid_features = cli::read_face_ids(c.features_file, view.surface.F.rows());
   if (c.features_from_mesh) {
-    if (file.face.selected.empty()) cli::die(c.in + " carries no face selection to use as rigid features");
-    c.slimming.rigid_features = file.face.selected;
+    if (file.face.selected.empty()) throw cli::Refusal(in + " carries no face selection to use as rigid features", cli::kExitUsage);
+    options.rigid_features = file.face.selected;
   }
   try {
-    validate_slimming_options(c.slimming, static_cast<long>(view.surface.F.rows()));
+    validate_slimming_options(options, static_cast<long>(view.surface.F.rows()));
   } catch (const std::exception& e) {
-    cli::die(e.what());
+    throw cli::Refusal(e.what(), cli::kExitUsage);
   }
   return file;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  cli::CliOptions c = cli::parse_arguments(std::vector<std::string>(argv + 1, argv + argc));
-  check_files(c);
+namespace slim::cli {
+
+FileRun slim_file(const CliOptions& c, const std::string& in, const std::string& out, bool summary) {
+  check_input(in);
+  SlimmingOptions options = c.slimming;
   WeldedView view;  // the surface the core computes on (core/geometry/welded_view.h)
-  const io::MeshFile file = read_input(c, view);
+  const io::MeshFile file = read_input(c, in, options, view);
   try {
-    if (!c.quiet) c.slimming.progress = print_progress;
-    const OrientedSlimming job = run_job(c, file, view);
+    if (!c.quiet) options.progress = print_progress;
+    const OrientedSlimming job = run_job(c, options, file, view);
     const SlimmingResult& r = job.slimming;
     // The files get the input's own vertex list back, moved as the welded view moved.
-    io::write_mesh(c.out, file, view.positions_to_input(file.surface.V, r.surface.V), {r.after.quality, r.after.risky});
-    cli::RunReport run{c.in, c.out, c.orient, &file, &view, &job, &c.slimming, c.scale, {}};
+    io::write_mesh(out, file, view.positions_to_input(file.surface.V, r.surface.V), {r.after.quality, r.after.risky});
+    RunReport run{in, out, c.orient, &file, &view, &job, &c.slimming, c.scale, {}};
     run.figures = slimming_figures(job.posed, r, bbox_diagonal(view.surface.V));
-    cli::print_summary(run, c.verbose);
-    if (!c.report.empty()) cli::write_report(c.report, run);
+    if (summary) print_summary(run, c.verbose);
+    return {run.figures, r.iterations == 0, r.stop_reason, report_json(run)};
   } catch (const std::exception& e) {
-    fail(e.what() + view.vertex_number_note(e.what()), cli::kExitRunFailed);
+    if (progress_line_open) std::fprintf(stderr, "\n"), progress_line_open = false;
+    throw Refusal(e.what() + view.vertex_number_note(e.what()), kExitRunFailed);
   } catch (...) {
-    fail("unexpected internal error (not a std::exception)", cli::kExitRunFailed);
+    throw Refusal("unexpected internal error (not a std::exception)", kExitRunFailed);
+  }
+}
+
+}  // namespace slim::cli
+
+int main(int argc, char** argv) {
+  const cli::CliOptions c = cli::parse_arguments(std::vector<std::string>(argv + 1, argv + argc));
+  if (c.batch()) {
+    check_output(c.report, "the report", false);
+    if (!std::filesystem::is_directory(c.out_dir)) cli::die("--out-dir " + c.out_dir + " is not a folder");
+    return cli::run_batch(c);
+  }
+  try {
+    check_input(c.in);
+    check_output(c.out, "the result", true);
+    check_output(c.oriented_out, "the oriented part", true);
+    check_output(c.report, "the report", false);
+    const cli::FileRun run = cli::slim_file(c, c.in, c.out, true);
+    if (!c.report.empty()) cli::write_text(c.report, run.report_json, "the report");
+  } catch (const cli::Refusal& e) {
+    fail(e.what(), e.code);
   }
   return 0;
 }
