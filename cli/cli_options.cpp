@@ -25,7 +25,8 @@ written back with its unit, objects and placements), and IN's vertex colours, te
 vertex quality and selection pass through; vertex normals too, recomputed where a vertex moved.
 The run replaces three face attributes: face quality becomes n.d + sin(alpha_max) (negative =
 still risky; PLY), face colour its ramp (PLY, OFF, STL, 3MF), and the face selection the still-risky
-faces (PLY). OUT is in the input's frame (no rescaling, no recentring), or with --orient in the
+faces (PLY); where IN has no vertex colours, vertex colour and quality say how far each vertex
+moved (PLY; colour also OFF; see --colour). OUT is in the input's frame (no rescaling, no recentring), or with --orient in the
 print pose the search chose. See docs/files-and-attributes.md.
 
 Exit status: 0 done (also when the part comes back unchanged), 1 the run failed, 2 bad usage (a
@@ -77,6 +78,12 @@ options:
   --out-dir DIR            a batch: slim each IN into DIR/<name>_slimmed.<its extension>, go on
                            past a file that fails, and print one table (file, support, shape,
                            status); exit 1 when any file failed
+  --colour moved|risky|none
+                           what OUT's colours say: moved colours each vertex by how far it
+                           moved (blue: not at all, red: the budget; PLY and OFF, when IN has no
+                           vertex colours of its own) and each face by n.d + sin(alpha_max) (red:
+                           still risky); risky only the faces; none adds no colours (nor face
+                           quality): IN's own pass through                          [moved]
   --report FILE.json       also write every figure of the summary as JSON (docs/usage.md); with
                            --out-dir, one JSON object per line, per file
   --threads N              OpenMP threads (the result does not depend on it)
@@ -217,6 +224,12 @@ CliOptions parse_arguments(const std::vector<std::string>& args) {
       else if (v == "normal") c.effort = OrientationEffort::Normal;
       else if (v == "thorough") c.effort = OrientationEffort::Thorough;
       else die("--orient-effort expects fast, normal or thorough, got '" + v + "'");
+    } else if (a == "--colour" || a == "--color") {
+      const std::string& v = value(i);
+      if (v == "moved") c.colour = ColourMode::Moved;
+      else if (v == "risky") c.colour = ColourMode::Risky;
+      else if (v == "none") c.colour = ColourMode::None;
+      else die(a + " expects moved, risky or none, got '" + v + "'");
     } else if (a == "--oriented-output") c.oriented_out = value(i);
     else if (a == "--report") c.report = value(i);
     else if (a == "--threads") o.threads = static_cast<int>(at_least_zero(a, integer(a, value(i)), " (0: every core)"));

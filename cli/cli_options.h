@@ -16,6 +16,11 @@
 
 namespace slim::cli {
 
+// What the colours of OUT say (--colour): how far each vertex moved (a vertex colour ramp, where
+// the format holds vertex colours and IN has none of its own) and the still-risky faces (face
+// colours); the still-risky faces alone; or nothing the run adds.
+enum class ColourMode { Moved, Risky, None };
+
 struct CliOptions {
   std::string in, out;              // the input mesh and where the result goes (one file)
   std::vector<std::string> inputs;  // every input mesh given, in order
@@ -26,6 +31,7 @@ struct CliOptions {
   double scale = 1.0;               // --scale: IN's positions times this, first (> 0)
   bool features_from_mesh = false, quiet = false, orient = false, verbose = false;
   OrientationEffort effort = OrientationEffort::Normal;
+  ColourMode colour = ColourMode::Moved;
   SlimmingOptions slimming;
 
   bool batch() const { return !out_dir.empty(); }

@@ -5,6 +5,8 @@
 #include <QRegularExpression>
 #include <vcg/complex/append.h>
 
+#include "vcg_adapters/displacement_ramp.h"
+
 namespace slim::plugin {
 
 void add_alpha_max_parameter(RichParameterList& par) {
@@ -131,11 +133,11 @@ void write_displacement(MeshModel& output, const MeshModel& input, const Displac
   slim::vcg_adapters::write_vertex_quality(output.cm, d.per_vertex);
   if (input.hasDataMask(MeshModel::MM_VERTCOLOR)) return;  // the input's own colours, as they were
   output.updateDataMask(MeshModel::MM_VERTCOLOR);
-  // VCG's ramp runs red -> blue from its first bound to its second: from the top down to 0 it is
-  // blue at 0 and red at the top. With no displacement at all every vertex is blue.
-  const float top = d.ramp_top_mm > 0.0 ? float(d.ramp_top_mm) : 1.0f;
   for (CVertexO& v : output.cm.vert)
-    if (!v.IsD()) v.C() = vcg::Color4b::ColorRamp(top, 0.0f, float(v.Q()));
+    if (!v.IsD()) {
+      const Eigen::Matrix<unsigned char, 1, 4> c = slim::vcg_adapters::displacement_ramp_colour(v.Q(), d.ramp_top_mm);
+      v.C() = vcg::Color4b(c(0), c(1), c(2), c(3));
+    }
 }
 
 }  // namespace
