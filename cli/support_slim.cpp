@@ -18,7 +18,6 @@
 #include "core/orientation/oriented_slimming.h"
 #include "mesh_io/mesh_io.h"
 #include "summary.h"
-#include "vcg_adapters/displacement_ramp.h"
 
 using namespace slim;
 
@@ -122,21 +121,6 @@ io::MeshFile read_input(const cli::CliOptions& c, const std::string& in, Slimmin
   return file;
 }
 
-// The file to write with --colour moved: where it has no vertex colours (or quality) of its own,
-// each vertex's displacement from `before` to `after` (mm) as its quality and as a colour on the
-// displacement ramp, red at the budget (or, with no budget, at the largest displacement).
-io::MeshFile with_displacement(const io::MeshFile& file, const Points& before, const Points& after, double budget_mm) {
-  io::MeshFile out = file;
-  const Eigen::VectorXd moved = (after - before).rowwise().norm();
-  const double top = budget_mm > 0.0 ? budget_mm : moved.maxCoeff();
-  if (out.vertex.quality.size() == 0) out.vertex.quality = moved;
-  if (out.vertex.colour.rows() == 0) {
-    out.vertex.colour.resize(moved.size(), 4);
-    for (Eigen::Index i = 0; i < moved.size(); ++i) out.vertex.colour.row(i) = vcg_adapters::displacement_ramp_colour(moved(i), top);
-  }
-  return out;
-}
-
 }  // namespace
 
 namespace slim::cli {
@@ -155,10 +139,11 @@ FileRun slim_file(const CliOptions& c, const std::string& in, const std::string&
     // The files get the input's own vertex list back, moved as the welded view moved.
     const Points V = view.positions_to_input(file.surface.V, r.surface.V);
     const io::FaceExtras faces{c.colour == ColourMode::None ? Eigen::VectorXd() : r.after.quality, r.after.risky};
-    if (c.colour == ColourMode::Moved)
-      io::write_mesh(out, with_displacement(file, view.positions_to_input(file.surface.V, job.posed.V), V, run.figures.budget_mm),
-                     V, faces);
-    else
+    if (c.colour == ColourMode::Moved) {
+      const Eigen::VectorXd moved = (V - view.positions_to_input(file.surface.V, job.posed.V)).rowwise().norm();
+      const double top = run.figures.budget_mm > 0.0 ? run.figures.budget_mm : moved.maxCoeff();
+      io::write_mesh(out, io::with_displacement(file, moved, top), V, faces);
+    } else
       io::write_mesh(out, file, V, faces);
     if (summary) print_summary(run, c.verbose);
     return {run.figures, r.iterations == 0, r.stop_reason, report_json(run)};

@@ -10,6 +10,7 @@
 
 #include "core/geometry/welded_view.h"
 #include "mesh_io/mesh_formats.h"
+#include "vcg_adapters/displacement_ramp.h"
 #include "vcg_adapters/stl_writer.h"
 
 namespace slim::io {
@@ -151,6 +152,18 @@ void write_mesh(const std::string& path, const MeshFile& source, const Points& V
     case MeshFormat::Off: return detail::write_off(path, source, V, results);
     case MeshFormat::ThreeMf: return detail::write_3mf(path, source, V, results);
   }
+}
+
+MeshFile with_displacement(const MeshFile& file, const Eigen::VectorXd& displacement_mm, double top_mm) {
+  if (displacement_mm.size() != file.surface.V.rows()) throw std::invalid_argument("with_displacement: one value per vertex");
+  MeshFile out = file;
+  if (out.vertex.quality.size() == 0) out.vertex.quality = displacement_mm;
+  if (out.vertex.colour.rows() == 0) {
+    out.vertex.colour.resize(displacement_mm.size(), 4);
+    for (Eigen::Index i = 0; i < displacement_mm.size(); ++i)
+      out.vertex.colour.row(i) = vcg_adapters::displacement_ramp_colour(displacement_mm(i), top_mm);
+  }
+  return out;
 }
 
 Surface load_surface(const std::string& path, FaceExtras* extras) {

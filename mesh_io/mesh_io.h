@@ -102,6 +102,11 @@ struct FaceExtras {
   std::vector<bool> selected;  // #F: written as the face selection (PLY)
 };
 
+// `file` with a run's displacement (#V, mm) as its vertex quality and as vertex colours on the
+// displacement ramp, red at `top_mm` (vcg_adapters/displacement_ramp.h), each only where the file
+// has none of its own.
+MeshFile with_displacement(const MeshFile& file, const Eigen::VectorXd& displacement_mm, double top_mm);
+
 // Reads a mesh file as described above.
 MeshFile read_mesh(const std::string& path);
 // The same from the file's bytes (`path` gives the format and names the file in messages).
