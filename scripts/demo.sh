@@ -6,11 +6,12 @@
 #   3. Print Orientation               -> out/bunny_oriented.ply (the best print pose)
 #   4. The slicer judge                -> out/eval-bunny/report.md and before_after.png
 #   5. The judge with orientation first -> out/eval-bunny-oriented/report.md (three columns)
+#   6. support-slim at print size      -> out/bunny_slim.3mf (oriented, slimmed; a slicer opens it)
 # Open the meshes in MeshLab to compare. Idempotent.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/setup.sh"
-"$here/scripts/build.sh" --target filter_support_slimming
+"$here/scripts/build.sh" --target filter_support_slimming support-slim
 out="$here/out"; mkdir -p "$out"
 home="$(mktemp -d)"; trap 'rm -rf "$home"' EXIT
 
@@ -51,3 +52,13 @@ echo "The independent judge (PrusaSlicer support volume, scaled to 60 mm):"
 echo
 echo "The same judge with Print Orientation first: as given, oriented, oriented + slimmed:"
 "$here/eval/run.sh" part "$here/data/bunny.ply" --orient --out "$out/eval-bunny-oriented" --name "sample bunny, oriented" --quiet
+
+# 6. The command line, as a print engineer runs it: the bunny at 60 mm, turned into its best pose
+#    and slimmed, written as a 3MF that PrusaSlicer (or any slicer) opens.
+echo
+echo "support-slim: the bunny at 60 mm (--scale 6), oriented and slimmed, as 3MF:"
+"$here/build/cli/support-slim" "$here/data/bunny.ply" --scale 6 --orient -o "$out/bunny_slim.3mf" --quiet
+if command -v prusa-slicer >/dev/null; then
+  echo "PrusaSlicer reads it back:"
+  prusa-slicer --info "$out/bunny_slim.3mf" 2>/dev/null | grep -E "^(size_[xyz]|volume|number_of_facets|manifold) " | sed 's/^/  /'
+fi
