@@ -99,6 +99,10 @@ FilterOutcome run_filter(const FilterDefinition& filter, MeshDocument& md, const
     run.info(filter.name + ": support-slimming " + slim::version());  // which build made the result
     filter.apply(md, par, run);
     outcome.outputs = std::move(run.outputs);
+    // The version in the outputs too, as numbers: PyMeshLab hands back numbers only.
+    const QStringList parts = QString(slim::version()).split('.');
+    const char* keys[] = {"version_major", "version_minor", "version_patch"};
+    for (int k = 0; k < 3 && k < parts.size(); ++k) outcome.outputs[keys[k]] = parts[k].toInt();
   } catch (const FilterFailure& e) {
     fail(e.reason);
   } catch (const slim::Cancelled&) {

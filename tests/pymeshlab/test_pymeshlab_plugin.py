@@ -7,7 +7,8 @@ back equal to an independent numpy computation on the meshes PyMeshLab returns (
 n.d + sin(alpha) < 0, faces on the build plate excepted), and bad input refused with our reason
 in a PyMeshLabException.
 
-Environment: SLIM_PLUGIN (the plugin), SLIM_BUNNY (data/bunny.ply).
+Environment: SLIM_PLUGIN (the plugin), SLIM_BUNNY (data/bunny.ply), SLIM_VERSION (the project's
+version, from CMake).
 """
 import math
 import os
@@ -18,6 +19,7 @@ import pymeshlab
 
 PLUGIN = os.environ["SLIM_PLUGIN"]
 BUNNY = os.environ["SLIM_BUNNY"]
+VERSION = [int(part) for part in os.environ["SLIM_VERSION"].split(".")]
 NAMES = {
     "Overhang Analysis": "compute_scalar_by_overhang_per_face",
     "Support Slimming": "generate_support_slimmed_mesh",
@@ -74,6 +76,8 @@ class PyMeshLabPluginTest(unittest.TestCase):
         setattr(pymeshlab.MeshSet, NAMES["Overhang Analysis"], pymeshlab.bind_function(NAMES["Overhang Analysis"]))
         out = self.ms.compute_scalar_by_overhang_per_face(alphamax=50.0)
         self.assertGreater(out["risky_area"], 0.0)
+        # which build made the result: PyMeshLab hands back numbers only, so the version's parts
+        self.assertEqual([out["version_major"], out["version_minor"], out["version_patch"]], VERSION)
 
     def test_overhang_analysis_matches_numpy(self):
         alpha, tolerance = 35.0, 0.05
