@@ -24,10 +24,11 @@ triangle's corners apart, is welded when read; a 3MF's build is read as one plat
 written back with its unit, objects and placements), and IN's vertex colours, texture coordinates,
 vertex quality and selection pass through; vertex normals too, recomputed where a vertex moved.
 The run replaces three face attributes: face quality becomes n.d + sin(alpha_max) (negative =
-still risky; PLY), face colour its ramp (PLY, OFF, STL, 3MF), and the face selection the still-risky
-faces (PLY); where IN has no vertex colours, vertex colour and quality say how far each vertex
-moved (PLY; colour also OFF; see --colour). OUT is in the input's frame (no rescaling, no recentring), or with --orient in the
-print pose the search chose. See docs/files-and-attributes.md.
+still risky; PLY), face colour its ramp (PLY, OFF, STL, 3MF), and the face selection the
+still-risky faces (PLY); where IN has no vertex colours, vertex colour and quality say how far
+each vertex moved (PLY; colour also OFF; see --colour). OUT is in the input's frame (no
+rescaling, no recentring), or with --orient in the print pose the search chose. See
+docs/files-and-attributes.md.
 
 Exit status: 0 done (also when the part comes back unchanged), 1 the run failed, 2 bad usage (a
 flag, a value or an output path), 3 a bad input file (missing, unreadable, not a mesh, or a mesh
@@ -39,7 +40,7 @@ part under 5 mm or over 1 m across gets a warning, and --scale F scales IN first
 scaled too).
 
 options:
-  -o, --output FILE        where to write the result (required)
+  -o, --output FILE        where to write the result (one IN; several take --out-dir)
   --scale F                scale IN by F (> 0) about the origin first: 25.4 for inches,
                            10 for centimetres, 1000 for metres                        [1]
   --angle DEG              self-supporting angle from the vertical, [0, 90)       [45]

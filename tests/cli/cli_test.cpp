@@ -239,7 +239,7 @@ TEST(Cli, BadInputExitsNonZeroWithOneLine) {
   }
   const CliRun help = run_cli("--help");
   EXPECT_EQ(help.exit_code, 0);
-  for (const char* flag : {"--angle", "--dir", "--resolution", "--domain", "--iterations", "--method", "--max-deviation", "--max-creases", "--min-saving", "--threads", "--one-resolution"})
+  for (const char* flag : {"--angle", "--dir", "--resolution", "--domain", "--iterations", "--method", "--max-deviation", "--max-creases", "--min-saving", "--threads", "--one-resolution", "--out-dir", "--colour", "--scale", "--version"})
     EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
   fs::remove_all(dir);
 }
