@@ -14,6 +14,8 @@ constexpr int kSelectedBit = 0x20;
 
 // "cannot read <path>: <why>"
 [[noreturn]] void refuse(const std::string& path, const std::string& why);
+// "cannot write <path>: <what> (<the system's reason>)", the reason from errno when it has one.
+[[noreturn]] void write_failed(const std::string& path, const std::string& what);
 
 // Refuses, before anything is allocated, a count the file cannot hold: `count` items of at least
 // `min_bytes` bytes each in `available` bytes ("its header claims 2000000000 vertices, but ...").

@@ -1,6 +1,7 @@
 #include "mesh_io/mesh_io.h"
 
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cstring>
 #include <fstream>
@@ -17,6 +18,11 @@ namespace slim::io {
 namespace detail {
 
 void refuse(const std::string& path, const std::string& why) { throw std::runtime_error("cannot read " + path + ": " + why); }
+
+void write_failed(const std::string& path, const std::string& what) {
+  const int error = errno;
+  throw std::runtime_error("cannot write " + path + ": " + what + (error != 0 ? std::string(" (") + std::strerror(error) + ")" : ""));
+}
 
 void check_count(const std::string& path, const char* what, std::uint64_t count, std::uint64_t min_bytes,
                  std::uint64_t available) {

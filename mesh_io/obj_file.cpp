@@ -11,6 +11,7 @@
 // when the source has vertex colours), vt (per corner, or per vertex), vn and f records.
 // OBJ has no face quality, colour or selection: a run's per-face results are not written.
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -269,8 +270,9 @@ void write_plain(std::ofstream& out, const MeshFile& source, const Points& V, co
 }  // namespace
 
 void write_obj(const std::string& path, const MeshFile& source, const Points& V) {
+  errno = 0;
   std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot write " + path + ": cannot open the file");
+  if (!out) write_failed(path, "cannot open the file");
   const bool moved = V != source.surface.V;
   if (source.obj) {
     const bool has_normals = std::find(source.obj->kinds.begin(), source.obj->kinds.end(), ObjRecords::Kind::Normal) !=
@@ -280,8 +282,8 @@ void write_obj(const std::string& path, const MeshFile& source, const Points& V)
   } else {
     write_plain(out, source, V, normals_to_write(source, V));
   }
-  out.flush();
-  if (!out) throw std::runtime_error("cannot write " + path + ": writing failed");
+  out.close();
+  if (!out) write_failed(path, "writing failed");
 }
 
 }  // namespace detail

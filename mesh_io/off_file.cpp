@@ -9,6 +9,7 @@
 // texture coordinate, each face as a triangle with the run's ramp colour (or the file's own
 // face colour when there is no run result).
 #include <algorithm>
+#include <cerrno>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -164,8 +165,9 @@ MeshFile read_off(const std::string& path, const std::string& bytes) {
 }
 
 void write_off(const std::string& path, const MeshFile& source, const Points& V, const FaceExtras& results) {
+  errno = 0;
   std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot write " + path + ": cannot open the file");
+  if (!out) write_failed(path, "cannot open the file");
   const Points normals = normals_to_write(source, V);
   const VertexAttributes& va = source.vertex;
   const bool colour = va.colour.rows() > 0, texcoord = va.texcoord.rows() > 0;
@@ -188,8 +190,8 @@ void write_off(const std::string& path, const MeshFile& source, const Points& V,
     }
     out << "\n";
   }
-  out.flush();
-  if (!out) throw std::runtime_error("cannot write " + path + ": writing failed");
+  out.close();
+  if (!out) write_failed(path, "writing failed");
 }
 
 }  // namespace slim::io::detail

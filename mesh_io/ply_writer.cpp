@@ -4,6 +4,7 @@
 // order MeshLab reads and writes: vertex x y z [nx ny nz] [flags] [red green blue alpha]
 // [quality] [texture_u texture_v]; face vertex_indices [flags] [red green blue alpha] [quality]
 // [texcoord] [texnumber], each only when the source (or the run) has it.
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -85,9 +86,12 @@ void write_ply(const std::string& path, const MeshFile& source, const Points& V,
     }
     if (texnumber) put(out, std::int32_t{fa.texture(f)});
   }
+  errno = 0;
   std::ofstream file(path, std::ios::binary);
+  if (!file) write_failed(path, "cannot open the file");
   file.write(out.data(), static_cast<std::streamsize>(out.size()));
-  if (!file) throw std::runtime_error("cannot write " + path + ": writing failed");
+  file.close();
+  if (!file) write_failed(path, "writing failed");
 }
 
 }  // namespace slim::io::detail

@@ -4,7 +4,8 @@
 // thumbnail itself, and lib3mf 1.x refuses a package whose root relationship points at a missing
 // part ("Could not create OPC Part"). Such a relationship names nothing that could be read, so it
 // is dropped from _rels/.rels (through libzip, in memory) before lib3mf sees the package; the
-// file on disk is not touched. A package that is not a zip is passed on as it is: lib3mf names it.
+// file on disk is not touched. Bytes that do not start as a zip are passed on as they are: lib3mf
+// names them.
 #include <cstdlib>
 #include <cstring>
 #include <memory>
@@ -70,6 +71,7 @@ std::string source_bytes(zip_source_t* source) {
 }  // namespace
 
 std::string readable_3mf_package(const std::string& bytes) {
+  if (bytes.compare(0, 4, std::string("PK\x03\x04", 4)) != 0) return bytes;  // no zip: lib3mf names it
   zip_error_t error;
   zip_error_init(&error);
   // libzip's own copy: writing the archive back replaces and frees the buffer it was opened from.

@@ -323,3 +323,16 @@ TEST_P(BadInputCli, WritesASaneMeshOrExitsWithOneLine) {
 
 INSTANTIATE_TEST_SUITE_P(Catalogue, BadInputCli, ::testing::ValuesIn(test::bad_inputs()),
                          [](const ::testing::TestParamInfo<test::BadInput>& info) { return info.param.name; });
+
+// A write that fails says why, in the system's words: here a full disk (a .ply that is /dev/full).
+TEST(Cli, AFailedWriteGivesTheSystemsReason) {
+  const fs::path dir = scratch();
+  const fs::path full = dir / "full.ply";
+  fs::create_symlink("/dev/full", full);
+  const CliRun r = run_cli("'" + test::sample_bunny_path() + "' -o '" + full.string() + "' --iterations 0 --quiet");
+  EXPECT_EQ(r.exit_code, 1) << r.err;  // the run failed after it started
+  EXPECT_NE(r.err.find("cannot write " + full.string() + ": writing failed (No space left on device)"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  fs::remove_all(dir);
+}
