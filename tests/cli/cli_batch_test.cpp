@@ -46,9 +46,9 @@ TEST(CliBatch, FiveFilesOneBadGoOnAndAgreeWithSingleRuns) {
   fs::copy_file(test::sample_bunny_path(), dir / "bunny.ply");
   io::save_surface((dir / "t.stl").string(), test::t_shape());
   io::save_surface((dir / "arch.obj").string(), test::refined(test::arch(), 1));
-  io::save_surface((dir / "bunny.3mf").string(), test::sample_bunny());
+  io::save_surface((dir / "arch.3mf").string(), test::refined(test::arch(), 0));
   std::ofstream(dir / "bad.off") << "OFF\n-5 4 0\n";
-  const std::vector<std::string> inputs = {"bunny.ply", "t.stl", "arch.obj", "bad.off", "bunny.3mf"};
+  const std::vector<std::string> inputs = {"bunny.ply", "t.stl", "arch.obj", "bad.off", "arch.3mf"};
   std::string args;
   for (const std::string& in : inputs) args += shell_path(dir / in) + " ";
   const CliRun batch = run_cli(args + "--out-dir " + shell_path(out) + " --report " + shell_path(dir / "r.jsonl") + " --quiet");
