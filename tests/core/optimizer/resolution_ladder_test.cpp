@@ -129,10 +129,11 @@ TEST(ResolutionLadder, TheResultIsTheRungWhoseResultNeedsTheLeastSupport) {
   EXPECT_EQ(r.shape.crease_share_pct, best.shape.crease_share_pct);
   EXPECT_LT(r.support_after_mm3.value(), alone(rungs[0]).support_after_mm3.value());
   EXPECT_LT(r.support_after_mm3.value(), r.support_before_mm3.value());
-  // The time is every rung's.
+  // The time is every rung's, not the chosen (middle) rung's alone, which is about a fifth of the
+  // sum: the bound leaves room for the machine's load, which moves the separate runs' times.
   double seconds = 0.0;
   for (int resolution : rungs) seconds += alone(resolution).seconds;
-  EXPECT_GT(r.seconds, 0.5 * seconds);
+  EXPECT_GT(r.seconds, 0.35 * seconds);
 }
 
 // A finer rung that the memory budget refuses is left out and said so; the resolution given is
