@@ -134,11 +134,10 @@ std::vector<BadFile> bad_files() {
        "has 2 corners"},
       {"off_four_dimensional", "4OFF (homogeneous coordinates)", "off", std::string("4OFF\n4 4 0\n") + kTetraVertices,
        "not supported"},
-      // ---- neither --------------------------------------------------------------------------------
+      // ---- 3MF and neither -------------------------------------------------------------------------
       {"threemf_not_a_zip", "an ASCII STL named .3mf", "3mf", kAsciiStlFacet, "not a readable 3MF file"},
       {"threemf_empty", "an empty file named .3mf", "3mf", "", "not a readable 3MF file"},
-      {"unknown_extension", "an ASCII STL named .xyz", "xyz", kAsciiStlFacet, "unknown mesh format"},
-  };
+      {"unknown_extension", "an ASCII STL named .xyz", "xyz", kAsciiStlFacet, "unknown mesh format"}};
   return files;
 }
 
