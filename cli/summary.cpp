@@ -72,15 +72,18 @@ void print_orientation_details(const OrientationResult& orientation, const Slimm
   std::printf("  support proxy   %.6g (as given) -> %.6g (oriented) -> %.6g (slimmed) mm^3\n",
               orientation.as_given.shadow_volume, r.before.shadow_volume, r.after.shadow_volume);
   std::printf("  risky area      %.6g (as given) -> %.6g (oriented) mm^2\n", orientation.as_given.risky_area, r.before.risky_area);
-  std::printf("  best poses      score = support proxy - %.3g mm x plate contact (mm^3; lower is better)\n",
-              orientation.contact_bonus_height);
+  std::printf("  best poses      the chosen first, then by the support model's estimate (mm^3, lower is better);\n"
+              "                  %d poses judged at one grid phase, %d in full; the proxy only gathered them\n",
+              orientation.judged_coarse, orientation.judged_fine);
+  auto support = [](const OrientationCandidate& c) { return c.support_estimate ? *c.support_estimate : NAN; };
   for (size_t k = 0; k < orientation.top.size() && k < 5; ++k) {
     const OrientationCandidate& c = orientation.top[k];
-    std::printf("    %zu. score %-11.6g proxy %-11.6g risky %-10.6g contact %-10.6g dir (%.4f, %.4f, %.4f) %s\n", k + 1, c.score,
-                c.shadow_volume, c.risky_area, c.contact_area, c.direction.x(), c.direction.y(), c.direction.z(),
-                c.origin.c_str());
+    std::printf("    %zu. support %-10.6g %-8s contact %-9.6g proxy %-10.6g dir (%.4f, %.4f, %.4f) %s\n", k + 1, support(c),
+                c.stable ? "stands" : "balances", c.contact_area, c.shadow_volume, c.direction.x(), c.direction.y(),
+                c.direction.z(), c.origin.c_str());
   }
-  std::printf("    as given: score %.6g\n", orientation.as_given.score);
+  std::printf("    as given: support %.6g, %s, proxy %.6g\n", support(orientation.as_given),
+              orientation.as_given.stable ? "stands" : "balances", orientation.as_given.shadow_volume);
 }
 
 // The support the slicer builds, as the core's support model estimates it (what the run chose by).

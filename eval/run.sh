@@ -22,6 +22,7 @@ studies=(
   "support-model|support-slim slim-eval support_model_tool write_shape|the support model's estimates against both slicers, file by file (out/support-model/)"
   "poses|slim-eval support_model_tool|the support model against PrusaSlicer over ten poses of each part (out/poses/)"
   "orientation|support-slim slim-eval|Print Orientation judged by PrusaSlicer on the corpus (out/orientation/)"
+  "random-poses|support-slim slim-eval|Print Orientation from random starting poses against upright, by PrusaSlicer (out/random-poses/)"
   "hausdorff|filter_support_slimming|symmetric Hausdorff and mean distance between two meshes, MeshLab's filter"
 )
 

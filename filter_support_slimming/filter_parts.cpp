@@ -76,9 +76,8 @@ const char* const kInsideOutNotice =
     "over; to fix the layer itself use Filters > Normals, Curvatures and Orientation > Invert Faces Orientation";
 
 const char* const kSearchEffortHelp =
-    "How many print directions the search tries: Fast (1000 directions over the sphere, 4 refined), Normal "
-    "(4000, 8) or Thorough (16000, 16), besides the poses that rest a large flat face or a convex-hull facet "
-    "on the plate.";
+    "How hard the search tries: Fast (1000 directions over the sphere, 4 refined, 24 poses judged by the "
+    "support model), Normal (4000, 8, 48) or Thorough (16000, 16, 96).";
 
 slim::OrientationOptions orientation_options(float alpha_max_deg, int effort) {
   const slim::OrientationEffort level = effort == 0   ? slim::OrientationEffort::Fast
@@ -98,24 +97,27 @@ void log_orientation(const FilterRun& run, const QString& filter, const slim::Or
                         best.direction.x(), best.direction.y(), best.direction.z(), turn, r.candidates, r.seconds));
   if (given.support_estimate && best.support_estimate)
     run.info(filter + QString::asprintf(": support %.6g -> %.6g mm^3 (the support model's estimate of a slicer's "
-                                        "support, which chose the pose among the best by score)",
+                                        "support, which chose the pose)",
                                         *given.support_estimate, *best.support_estimate));
   run.info(filter + QString::asprintf(
                         ": support proxy (shadow volume: risky faces' footprint x height above the plate) %.6g -> "
                         "%.6g mm^3; risky area %.6g -> %.6g mm^2; plate contact %.6g -> %.6g mm^2",
                         given.shadow_volume, best.shadow_volume, given.risky_area, best.risky_area,
                         given.contact_area, best.contact_area));
-  run.info(filter + QString::asprintf(": best poses (score = proxy - %.3g mm x plate contact, lower is better):",
-                                      r.contact_bonus_height));
+  run.info(filter + QString::asprintf(": best poses, the chosen first, then by the support model's estimate (lower is "
+                                      "better; %d poses judged at one grid phase, %d in full):",
+                                      r.judged_coarse, r.judged_fine));
+  auto support = [](const slim::OrientationCandidate& c) { return c.support_estimate ? *c.support_estimate : NAN; };
   for (size_t k = 0; k < r.top.size() && k < 5; ++k) {
     const slim::OrientationCandidate& c = r.top[k];
     run.info(filter + QString::asprintf(
-                          ":   %zu. score %.6g, proxy %.6g mm^3, risky area %.6g mm^2, contact %.6g mm^2, "
+                          ":   %zu. support %.6g mm^3, %s on the plate, contact %.6g mm^2, proxy %.6g mm^3, "
                           "direction (%.4f, %.4f, %.4f) [%s]",
-                          k + 1, c.score, c.shadow_volume, c.risky_area, c.contact_area, c.direction.x(),
-                          c.direction.y(), c.direction.z(), c.origin.c_str()));
+                          k + 1, support(c), c.stable ? "stands" : "balances", c.contact_area, c.shadow_volume,
+                          c.direction.x(), c.direction.y(), c.direction.z(), c.origin.c_str()));
   }
-  run.info(filter + QString::asprintf(":   as given: score %.6g", given.score));
+  run.info(filter + QString::asprintf(":   as given: support %.6g mm^3, %s on the plate, proxy %.6g mm^3", support(given),
+                                      given.stable ? "stands" : "balances", given.shadow_volume));
   if (r.inside_out && note_inside_out) run.warning(filter + ": " + kInsideOutNotice);
 }
 

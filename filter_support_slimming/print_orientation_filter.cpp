@@ -11,14 +11,14 @@ namespace slim::plugin {
 const char* const kPrintOrientationInfo =
     "Finds the print direction that needs the least support material, and turns the mesh into that pose: "
     "+Z up, resting on z = 0, as a <b>new layer</b> (the input layer is not changed).<br>"
-    "Each direction is scored by a support estimate, the <b>shadow volume</b>: for every risky face "
-    "(<i>n&middot;d + sin(&alpha;<sub>max</sub>) &lt; 0</i>, not resting on the plate), its area times "
-    "<i>-n&middot;d</i> (its footprint) times the height of its centre above the plate, that is the volume "
-    "of the support column under it. A small bonus for the area lying flat on the plate decides between "
-    "poses that need no support. The search tries directions spread over the whole sphere, the poses that "
-    "rest a large flat face or a convex-hull facet on the plate, and refines the best ones.<br>"
+    "The search scores directions over the whole sphere by a quick proxy (the <b>shadow volume</b>: each "
+    "overhanging face's footprint times its height above the plate), refines the best, and then lets the "
+    "<b>support model</b> (what a slicer builds) judge them together with the poses you would try: resting on a "
+    "large flat face or a convex-hull facet, along the principal axes, on the largest clusters of faces. The "
+    "least support wins; within 5% of it, a pose that stands on the plate by itself beats one balanced on a "
+    "point or an edge.<br>"
     "On the result, face quality and colour show the risky faces of the new pose, which are selected. "
-    "The log lists the five best poses, and the risky area and the estimate before and after. Turning "
+    "The log lists the five best poses by the model, and the risky area and the estimate before and after. Turning "
     "changes no shape; <i>Support Slimming</i> can then deform the part in its new pose.";
 
 void add_print_orientation_parameters(const MeshModel&, RichParameterList& par) {

@@ -83,7 +83,7 @@ TEST(Cli, OrientTurnsThePartFirstAndSlimsItInItsPrintPose) {
                            posed.string() + "' --iterations 3 --quiet --verbose");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* line : {"orientation     print direction (", "turned 180.0 deg", "support proxy", "(as given) ->",
-                           "(oriented) ->", "(slimmed)", "1. score", "as given: score"})
+                           "(oriented) ->", "(slimmed)", "1. support", "as given: support", "poses judged"})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing from\n" << r.out;
 
   const Surface read_in = io::load_surface(in.string());

@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
+
+#include <QRegularExpression>
 
 #include <common/filterscript.h>
 
@@ -96,9 +100,17 @@ void expect_oriented_layer(const MeshModel& input, const MeshModel& out, const s
   EXPECT_NEAR(selected, now.risky_count, 3);  // float rounding right at the threshold
 
   const QString text = log.join("\n");
-  for (const char* part : {"print direction (", "support proxy", "risky area", "  1. score", "  5. score", "as given: score"})
+  for (const char* part : {"print direction (", "support proxy", "risky area", "  1. support", "  5. support", "as given: support"})
     EXPECT_TRUE(text.contains(part)) << part << " not in\n" << text.toStdString();
-  EXPECT_FALSE(text.contains("  6. score")) << text.toStdString();
+  EXPECT_FALSE(text.contains("  6. support")) << text.toStdString();
+  // The poses are listed by the model's estimate: the chosen first (the least, or a pose that
+  // stands within 5% of it), then the others, least support first.
+  std::vector<double> listed;
+  QRegularExpressionMatchIterator it = QRegularExpression("  \\d\\. support ([-+.0-9eE]+) mm").globalMatch(text);
+  while (it.hasNext()) listed.push_back(it.next().captured(1).toDouble());
+  ASSERT_EQ(listed.size(), 5u) << text.toStdString();
+  EXPECT_TRUE(std::is_sorted(listed.begin() + 1, listed.end())) << text.toStdString();
+  EXPECT_LE(listed[0], *std::min_element(listed.begin() + 1, listed.end()) * 1.05 + 1.0) << text.toStdString();
 }
 
 RichParameterList example_script_params(const QString& file, const QString& filter) {

@@ -103,7 +103,7 @@ TEST(Meshlabserver, PrintOrientationScriptOnTheBunny) {
       << run.output;
   const double before = std::stod(m[1]), after = std::stod(m[2]);
   EXPECT_LT(after, before);
-  EXPECT_NE(run.output.find("5. score"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("5. support"), std::string::npos) << run.output;
 
   const Surface input = test::load_mesh(in);
   const OrientationResult core = optimize_orientation(input);

@@ -177,6 +177,11 @@ Eigen::Matrix3d axis_angle(const Eigen::Vector3d& axis, double radians) {
   return Eigen::AngleAxisd(radians, axis.normalized()).toRotationMatrix();
 }
 
+Eigen::Matrix3d random_rotation(std::mt19937_64& gen) {
+  std::normal_distribution<double> normal;
+  return Eigen::Quaterniond(normal(gen), normal(gen), normal(gen), normal(gen)).normalized().toRotationMatrix();
+}
+
 Surface transformed(const Surface& s, const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
   Surface out = s;
   out.V = (s.V * R.transpose()).rowwise() + t.transpose();

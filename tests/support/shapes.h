@@ -3,6 +3,7 @@
 // and every shape rests on z = 0 unless stated.
 #pragma once
 
+#include <random>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,9 @@ Surface transformed(const Surface& s, const Eigen::Matrix3d& R, const Eigen::Vec
 
 // Rotation about a unit axis by an angle in radians.
 Eigen::Matrix3d axis_angle(const Eigen::Vector3d& axis, double radians);
+
+// A rotation drawn uniformly (a normalised Gaussian quaternion) from gen.
+Eigen::Matrix3d random_rotation(std::mt19937_64& gen);
 
 // Path of the sample bunny written by scripts/setup.sh (+Z up, resting on z = 0).
 std::string sample_bunny_path();

@@ -11,9 +11,9 @@
 
 #include "core/orientation/orientation_candidates.h"
 #include "core/orientation/orientation_score.h"
+#include "core/orientation/pose_judging.h"
 #include "core/platform/parallel_for.h"
 #include "core/print/overhang.h"
-#include "core/support_model/support_model.h"
 
 namespace slim {
 
@@ -77,57 +77,6 @@ void choose_best(const OrientationGeometry& g, const OrientationOptions& o, cons
   result.rotation = rotation_to_up(result.best.direction);
 }
 
-// The support model's verdict on the best candidates (step 5): each judged in its pose, the least
-// support wins. Supports within 1% + 1 mm³ of the least (the model's phase noise) are a tie the
-// model cannot break; there the pose that rests more of the part on the plate wins (what the
-// score's contact bonus is for, and what the model does not see), then the pose as given, then the
-// better score. The shadow volume, the proxy the model replaces, decides nothing there: a pose can
-// cast less shadow and need a little less support by the model, yet more by the slicer, while it
-// touches the plate at a point instead of resting on a flat underside (docs/orientation.md).
-void judge_by_support(const Surface& oriented, const OrientationOptions& o, OrientationResult& result) {
-  const size_t judged = std::min(result.top.size(), static_cast<size_t>(std::max(0, o.support_model_candidates)));
-  if (judged == 0) return;
-  SupportModel model(oriented.F, oriented.V.rows());  // one mesh in every pose
-  auto estimate = [&](OrientationCandidate& c) {
-    SupportModelOptions m;
-    m.print.direction = c.direction;
-    m.print.alpha_max_deg = o.alpha_max_deg;
-    try {
-      c.support_estimate = model.estimate(oriented.V, m).volume_mm3;
-    } catch (const std::invalid_argument&) {
-      c.support_estimate.reset();  // the model cannot judge this pose (no height): the score stands
-    }
-  };
-  estimate(result.as_given);
-  for (size_t k = 0; k < judged; ++k) estimate(result.top[k]);
-  std::optional<double> measured_least = result.as_given.support_estimate;
-  for (size_t k = 0; k < judged; ++k) {
-    const std::optional<double>& support = result.top[k].support_estimate;
-    if (support && (!measured_least || *support < *measured_least)) measured_least = support;
-  }
-  if (!measured_least) return;  // nothing measurable: the score's order stands
-  const double least = *measured_least;
-  auto tied = [&](const OrientationCandidate& c) { return c.support_estimate && *c.support_estimate <= least * 1.01 + 1.0; };
-  auto rests_more = [](const OrientationCandidate& a, const OrientationCandidate& b) {
-    return a.contact_area > b.contact_area * (1.0 + 1e-9) + 1e-12;
-  };
-  const OrientationCandidate* best = tied(result.as_given) ? &result.as_given : nullptr;
-  size_t best_turn = judged;  // judged: the pose as given
-  for (size_t k = 0; k < judged; ++k) {
-    if (!tied(result.top[k]) || (best != nullptr && !rests_more(result.top[k], *best))) continue;
-    best = &result.top[k];
-    best_turn = k;
-  }
-  if (best_turn == judged) {
-    result.top.insert(result.top.begin(), result.as_given);
-  } else {
-    std::rotate(result.top.begin(), result.top.begin() + static_cast<std::ptrdiff_t>(best_turn),
-                result.top.begin() + static_cast<std::ptrdiff_t>(best_turn) + 1);
-  }
-  result.best = result.top.front();
-  result.rotation = rotation_to_up(result.best.direction);
-}
-
 }  // namespace
 
 std::vector<Eigen::Vector3d> fibonacci_sphere(int count) {
@@ -145,9 +94,15 @@ std::vector<Eigen::Vector3d> fibonacci_sphere(int count) {
 
 OrientationOptions with_effort(OrientationEffort effort, OrientationOptions base) {
   switch (effort) {
-    case OrientationEffort::Fast: base.sphere_candidates = 1000, base.refine_starts = 4; break;
-    case OrientationEffort::Normal: base.sphere_candidates = 4000, base.refine_starts = 8; break;
-    case OrientationEffort::Thorough: base.sphere_candidates = 16000, base.refine_starts = 16; break;
+    case OrientationEffort::Fast:
+      base.sphere_candidates = 1000, base.refine_starts = 4, base.support_model_candidates = 24, base.support_model_finalists = 4;
+      break;
+    case OrientationEffort::Normal:
+      base.sphere_candidates = 4000, base.refine_starts = 8, base.support_model_candidates = 48, base.support_model_finalists = 8;
+      break;
+    case OrientationEffort::Thorough:
+      base.sphere_candidates = 16000, base.refine_starts = 16, base.support_model_candidates = 96, base.support_model_finalists = 16;
+      break;
   }
   return base;
 }
@@ -187,7 +142,7 @@ OrientationResult optimize_orientation(const CheckedSurface& surface, const Orie
   result.as_given = pool.scored[0];
   choose_best(g, o, pool, result);
   const Surface& given = surface.get();
-  judge_by_support(result.inside_out ? flipped(given) : given, o, result);
+  judge_poses(result.inside_out ? flipped(given) : given, g, o, c, ranked, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
 }

@@ -43,10 +43,16 @@
 //      step from the candidate spacing down to 0.01°);
 //   4. the best pool is scored once more, exactly (the plate from every vertex, the plate rule
 //      face by face), and the top distinct ones (>= distinct_deg apart) kept;
-//   5. the support model estimates the support of the best support_model_candidates of them and of
-//      the pose as given, and the least support wins; among supports within 1% + 1 mm³ of the
-//      least, the pose resting the most area on the plate, then the pose as given, then the
-//      better score.
+//   5. the support model judges the poses (pose_judging.h): the pose as given, the best by score,
+//      and the poses a user would try (the largest convex-hull facets and flat regions resting on
+//      the plate, the principal axes both ways, the largest clusters of face normals face down),
+//      support_model_candidates in all, each at one grid phase; the best support_model_finalists
+//      of them and the pose as given in full. The least support wins, with two exceptions: within
+//      5% + 1 mm³ of the least, a pose that stands on the plate by itself (its centre of mass over
+//      its footprint, pose_stability.h) beats one balanced on a point or an edge; within 1% +
+//      1 mm³ (the model's noise), the pose resting the most area on the plate wins, then the pose
+//      as given, then the better coarse estimate. The score only gathers the candidates: it
+//      decides nothing here.
 //
 // Errors: std::invalid_argument with a readable reason for a mesh with no faces, bad indices,
 // non-finite coordinates, zero extent or zero area, faces that are not consistently oriented
@@ -80,18 +86,19 @@ struct OrientationOptions {
   int hull_facets = 256;            // largest convex-hull facets tried as resting faces, >= 0
   int refine_starts = 8;            // best distinct candidates refined locally, >= 0
   int report_count = 10;            // candidates returned in OrientationResult::top, >= 1
-  // The final choice: the support model (support_model.h, what the slicer builds) judges this many
-  // of the best distinct candidates by score, and the pose as given; the least support wins
-  // (within 1% of it: the most contact with the plate, then the pose as given, then the score).
-  // 0: the score alone.
-  int support_model_candidates = 8;
+  // The final choice (step 5): the support model (support_model.h, what the slicer builds) judges
+  // this many distinct poses at one grid phase (0: the score alone decides), then the best
+  // finalists of them, and the pose as given, in full.
+  int support_model_candidates = 48;
+  int support_model_finalists = 8;
   double distinct_deg = 5.0;        // candidates closer than this count as one pose, [0, 180]
   int threads = 0;                  // OpenMP threads; 0: the runtime's default. Results do not
                                     // depend on it.
 };
 
-// The options for a search effort: Fast (1000 sphere directions, 4 refined), Normal (the
-// defaults: 4000, 8) or Thorough (16000, 16), everything else as in `base`.
+// The options for a search effort: Fast (1000 sphere directions, 4 refined, 24 poses judged by
+// the model, 4 in full), Normal (the defaults: 4000, 8, 48, 8) or Thorough (16000, 16, 96, 16),
+// everything else as in `base`.
 OrientationOptions with_effort(OrientationEffort effort, OrientationOptions base = {});
 
 struct OrientationCandidate {
@@ -101,18 +108,24 @@ struct OrientationCandidate {
   double contact_area = 0.0;   // mm², faces resting on the plate
   double risky_area = 0.0;     // mm², risky faces (as in OverhangReport::risky_area)
   std::optional<double> support_estimate;  // mm³, the support model's estimate; none: not judged by it
-  std::string origin;          // "as given", "sphere", "flat face down", "flat face up", "hull facet", or
-                               // one of those followed by " refined"
+  double footprint_area = 0.0; // mm², convex hull of the vertices on the plate (judged poses only)
+  bool stable = false;         // its centre of mass lies over that footprint (judged poses only)
+  std::string origin;          // "as given", "sphere", "flat face down", "flat face up", "hull facet",
+                               // "principal axis", "face cluster down", or one of the first five
+                               // followed by " refined"
 };
 
 struct OrientationResult {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // input frame -> print frame
   OrientationCandidate best;
   OrientationCandidate as_given;          // the input's own pose, d = +Z
-  std::vector<OrientationCandidate> top;  // best first, pairwise >= distinct_deg apart
+  // The chosen pose first, then the others the model judged in full, least support first (by the
+  // score when the model judged none); pairwise >= distinct_deg apart, at most report_count.
+  std::vector<OrientationCandidate> top;
   double contact_bonus_height = 0.0;      // mm, as used in the score
   std::optional<double> plate_tolerance_mm;  // mm, as used; none: no plate rule
   int candidates = 0;                     // directions scored, refinement included
+  int judged_coarse = 0, judged_fine = 0; // poses the support model judged at one phase, in full
   int hull_facets = 0;                    // facets of the convex hull (0: it could not be built)
   bool inside_out = false;                // searched with the faces turned over
   double seconds = 0.0;                   // wall time of the search

@@ -164,10 +164,14 @@ Candidates candidate_directions(const OrientationGeometry& g, const OrientationO
   c.add(Eigen::Vector3d::UnitZ(), "as given", kAsGiven);
   for (const Eigen::Vector3d& d : fibonacci_sphere(o.sphere_candidates)) c.add(d, "sphere", kOther);
   for (const Region& r : flat_regions(g, o.flat_regions)) {
+    c.flat_down.push_back(c.dirs.size());
     c.add(-r.normal, "flat face down", kResting);
     c.add(r.normal, "flat face up", kOther);
   }
-  for (const Region& r : hull_planes(g, o.hull_facets)) c.add(-r.normal, "hull facet", kResting);
+  for (const Region& r : hull_planes(g, o.hull_facets)) {
+    c.hull_rest.push_back(c.dirs.size());
+    c.add(-r.normal, "hull facet", kResting);
+  }
   return c;
 }
 

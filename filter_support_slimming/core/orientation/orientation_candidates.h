@@ -43,6 +43,8 @@ struct Candidates {
   std::vector<Eigen::Vector3d> dirs;
   std::vector<std::string> origins;
   std::vector<TieRank> ranks;
+  // Where the resting poses are: the flat regions face down and the hull planes, largest first.
+  std::vector<size_t> flat_down, hull_rest;
   void add(const Eigen::Vector3d& d, const std::string& origin, TieRank rank) {
     dirs.push_back(d);
     origins.push_back(origin);

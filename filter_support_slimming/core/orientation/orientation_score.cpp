@@ -42,6 +42,8 @@ void check_options(const OrientationOptions& o) {
   if (o.flat_regions < 0) throw std::invalid_argument("the number of flat regions tried must be 0 or more");
   if (o.hull_facets < 0) throw std::invalid_argument("the number of convex-hull facets tried must be 0 or more");
   if (o.refine_starts < 0) throw std::invalid_argument("the number of refined candidates must be 0 or more");
+  if (o.support_model_candidates < 0 || o.support_model_finalists < 0)
+    throw std::invalid_argument("the number of poses the support model judges must be 0 or more");
   if (o.report_count < 1) throw std::invalid_argument("at least one candidate must be reported");
   if (!(o.distinct_deg >= 0.0 && o.distinct_deg <= 180.0))
     throw std::invalid_argument("the angle between distinct candidates must be in [0, 180] degrees");

@@ -19,12 +19,6 @@ using namespace slim;
 
 namespace {
 
-Eigen::Matrix3d random_rotation(std::mt19937_64& gen) {
-  std::normal_distribution<double> normal;
-  Eigen::Quaterniond q(normal(gen), normal(gen), normal(gen), normal(gen));
-  return q.normalized().toRotationMatrix();
-}
-
 Eigen::Vector3d random_direction(std::mt19937_64& gen) {
   std::normal_distribution<double> normal;
   return Eigen::Vector3d(normal(gen), normal(gen), normal(gen)).normalized();
@@ -129,8 +123,11 @@ TEST(Orientation, SearchIsNoWorseThanBruteForceOverItsCandidates) {
 }
 
 TEST(Orientation, TopCandidatesAreSortedDistinctAndExact) {
+  // With the score alone (no support model), the list is in the score's order. (By the model:
+  // PoseJudging.TheListRanksByTheModelTheChosenFirst.)
   const Surface t = test::t_shape();
   OrientationOptions o;
+  o.support_model_candidates = 0;
   const OrientationResult r = optimize_orientation(t, o);
   ASSERT_GE(r.top.size(), 3u);
   ASSERT_LE(static_cast<int>(r.top.size()), o.report_count);
@@ -185,7 +182,7 @@ TEST(Orientation, LBracketEndsLyingOnItsLargestFace) {
   const test::LBracket p;
   std::mt19937_64 gen(8);
   for (int trial = 0; trial < 4; ++trial) {
-    const Surface turned = test::transformed(test::l_bracket(p), random_rotation(gen), {7, -3, 11});
+    const Surface turned = test::transformed(test::l_bracket(p), test::random_rotation(gen), {7, -3, 11});
     const OrientationResult r = optimize_orientation(turned);
     EXPECT_EQ(r.best.shadow_volume, 0.0) << trial;
     EXPECT_NEAR(r.best.contact_area, p.base * p.width, 1e-6) << trial;
@@ -212,7 +209,7 @@ TEST(Orientation, RandomlyTurnedShapesEndInTheirNaturalBestPose) {
     const Eigen::VectorXd natural_heights = sorted_heights(apply_orientation(shape.surface, natural.rotation));
     const double scale = face_areas(shape.surface).sum() * part_size(shape.surface);
     for (int trial = 0; trial < 3; ++trial) {
-      const Surface turned = test::transformed(shape.surface, random_rotation(gen), {-4, 9, 2});
+      const Surface turned = test::transformed(shape.surface, test::random_rotation(gen), {-4, 9, 2});
       const OrientationResult r = optimize_orientation(turned);
       SCOPED_TRACE(shape.name + " trial " + std::to_string(trial));
       EXPECT_LE(r.best.score, natural.as_given.score + 1e-9 * scale);  // no worse than as designed
@@ -230,7 +227,7 @@ TEST(Orientation, BoxStaysAsGivenAndATurnedBoxLandsOnItsLargestFace) {
   EXPECT_NEAR(r.best.contact_area, 600.0, 1e-9);
   EXPECT_NEAR(std::abs(r.best.direction.x()), 1.0, 1e-12);
   std::mt19937_64 gen(2);
-  const Surface turned = test::transformed(box, random_rotation(gen));
+  const Surface turned = test::transformed(box, test::random_rotation(gen));
   const Surface placed = apply_orientation(turned, optimize_orientation(turned).rotation);
   EXPECT_NEAR(placed.V.col(2).maxCoeff(), 10.0, 1e-9);
   // A cube has six equal best faces: the tie goes to the pose as given.
@@ -304,7 +301,7 @@ TEST(Orientation, InsideOutMeshIsSearchedTurnedOver) {
 
 TEST(Orientation, PrintPoseRestsOnThePlateAndIsRigid) {
   std::mt19937_64 gen(3);
-  const Surface t = test::transformed(test::t_shape(), random_rotation(gen), {100, -50, 30});
+  const Surface t = test::transformed(test::t_shape(), test::random_rotation(gen), {100, -50, 30});
   const OrientationResult r = optimize_orientation(t);
   EXPECT_TRUE((r.rotation * r.best.direction).isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
   EXPECT_NEAR((r.rotation.transpose() * r.rotation - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
@@ -322,32 +319,29 @@ TEST(Orientation, PrintPoseRestsOnThePlateAndIsRigid) {
 }
 
 TEST(Orientation, SupportModelPicksTheLeastSupportOfTheBest) {
-  // Step 5: of the best distinct candidates by score and the pose as given, the one the support
-  // model says needs the least support wins; among those within 1% + 1 mm³ of the least, the one
-  // resting the most area on the plate (then the pose as given); each estimate is the model's own
-  // figure for that pose.
+  // Step 5: of the poses the model judged in full (the list and the pose as given), the least
+  // support wins, or a pose that stands by itself within 5% of it; no pose the rule admits needs
+  // clearly less (beyond the model's noise, 1% + 1 mm³); each estimate is the model's own figure.
   for (const NamedShape& shape : shapes()) {
     SCOPED_TRACE(shape.name);
-    OrientationOptions o;
-    const OrientationResult r = optimize_orientation(shape.surface, o);
-    const size_t judged = std::min(r.top.size(), static_cast<size_t>(o.support_model_candidates));
-    ASSERT_GT(judged, 0u);
+    const OrientationResult r = optimize_orientation(shape.surface, OrientationOptions{});
+    ASSERT_FALSE(r.top.empty());
     EXPECT_EQ(r.best.direction, r.top.front().direction);
     SupportModelOptions m;
     m.print.direction = r.best.direction;
     ASSERT_TRUE(r.best.support_estimate.has_value());  // judged; the T lying down needs none
-    ASSERT_GE(r.best.support_estimate.value(), 0.0);
-    EXPECT_NEAR(r.best.support_estimate.value(), estimate_support(shape.surface, m).volume_mm3, 1e-9 * r.best.support_estimate.value());
+    const double best = r.best.support_estimate.value();
+    ASSERT_GE(best, 0.0);
+    EXPECT_NEAR(best, estimate_support(shape.surface, m).volume_mm3, 1e-9 * best);
     ASSERT_TRUE(r.as_given.support_estimate.has_value());  // the pose as given was judged too
     std::vector<const OrientationCandidate*> rivals = {&r.as_given};
-    for (size_t k = 1; k <= judged && k < r.top.size(); ++k) rivals.push_back(&r.top[k]);
-    double least = r.best.support_estimate.value();
-    for (const OrientationCandidate* c : rivals)
-      if (c->support_estimate) least = std::min(least, *c->support_estimate);
-    EXPECT_LE(r.best.support_estimate.value(), least * 1.01 + 1.0);  // tied with the least
+    for (size_t k = 1; k < r.top.size(); ++k) rivals.push_back(&r.top[k]);
+    double least = best;
+    for (const OrientationCandidate* c : rivals) least = std::min(least, c->support_estimate.value());
+    EXPECT_LE(best, least * 1.05 + 1.0);
     for (const OrientationCandidate* c : rivals) {
-      if (c->support_estimate && *c->support_estimate <= least * 1.01 + 1.0) {
-        EXPECT_GE(r.best.contact_area, c->contact_area * (1.0 - 1e-9)) << c->origin;  // a tie: the most contact
+      if (c->stable || !r.best.stable) {
+        EXPECT_GE(c->support_estimate.value() * 1.01 + 1.0, best) << c->origin;
       }
     }
   }
