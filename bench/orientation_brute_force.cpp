@@ -7,7 +7,8 @@
 //
 // Per mesh and seed, one row: the model's estimate (mm³) of the chosen pose, of the best of N
 // Fibonacci directions (default 300) and of the upright pose, the chosen one against the least
-// of those two (%), whether the chosen pose stands by itself, and the search's seconds. The
+// of those two (%), whether the chosen pose stands by itself, the search's seconds, and the angle
+// between the chosen direction and the brute force's best (degrees, in the mesh's frame). The
 // brute force runs once per mesh, in the mesh's own frame: the turn moves only the slicer grid's
 // phase, which the model averages. The last lines: how many rows are within 2% of the brute
 // force (within 2% of the least of it and upright; a pose that stands may cost up to 5% more,
@@ -47,7 +48,11 @@ void judge_mesh(const std::string& path, int directions, int seeds, Tally& tally
   const Surface mesh = test::load_mesh(path);
   SupportModel model(mesh.F, mesh.V.rows());
   double brute = INFINITY;
-  for (const Eigen::Vector3d& d : fibonacci_sphere(directions)) brute = std::min(brute, estimate(model, mesh, d));
+  Eigen::Vector3d brute_direction = Eigen::Vector3d::UnitZ();
+  for (const Eigen::Vector3d& d : fibonacci_sphere(directions)) {
+    const double e = estimate(model, mesh, d);
+    if (e < brute) brute = e, brute_direction = d;
+  }
   const std::string name = path.substr(path.find_last_of('/') + 1);
   std::mt19937_64 gen(2026);
   for (int seed = 0; seed < seeds; ++seed) {
@@ -62,8 +67,9 @@ void judge_mesh(const std::string& path, int directions, int seeds, Tally& tally
     tally.within_2 += chosen <= least * 1.02 + 1.0;
     tally.within_5 += chosen <= least * 1.05 + 1.0;
     tally.slowest = std::max(tally.slowest, r.seconds);
-    std::printf("%-22s %4d %10.1f %10.1f %10.1f %+8.1f%% %-8s %6.2f\n", name.c_str(), seed, chosen, brute, upright, pct,
-                r.best.stable ? "stands" : "balances", r.seconds);
+    const double apart = std::acos(std::clamp((R.transpose() * r.best.direction).dot(brute_direction), -1.0, 1.0)) * 180.0 / M_PI;
+    std::printf("%-22s %4d %10.1f %10.1f %10.1f %+8.1f%% %-8s %6.2f %6.1f\n", name.c_str(), seed, chosen, brute, upright, pct,
+                r.best.stable ? "stands" : "balances", r.seconds, apart);
     std::fflush(stdout);
   }
 }
@@ -85,7 +91,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: orientation_brute_force [--directions N] [--seeds K] MESH...\n");
     return 2;
   }
-  std::printf("%-22s %4s %10s %10s %10s %9s %-8s %6s\n", "mesh", "seed", "chosen", "brute", "upright", "vs least", "rest", "s");
+  std::printf("%-22s %4s %10s %10s %10s %9s %-8s %6s %6s\n", "mesh", "seed", "chosen", "brute", "upright", "vs least", "rest", "s",
+              "deg");
   Tally tally;
   for (const std::string& path : meshes) judge_mesh(path, directions, seeds, tally);
   std::printf("within 2%% of the least of brute force and upright: %d of %d; within 5%%: %d of %d\n", tally.within_2,

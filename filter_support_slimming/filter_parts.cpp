@@ -76,8 +76,8 @@ const char* const kInsideOutNotice =
     "over; to fix the layer itself use Filters > Normals, Curvatures and Orientation > Invert Faces Orientation";
 
 const char* const kSearchEffortHelp =
-    "How hard the search tries: Fast (1000 directions over the sphere, 4 refined, 24 poses judged by the "
-    "support model), Normal (4000, 8, 48) or Thorough (16000, 16, 96).";
+    "How hard the search tries: Fast (1000 directions over the sphere, 4 refined, 32 poses judged by the "
+    "support model), Normal (4000, 8, 64) or Thorough (16000, 16, 128).";
 
 slim::OrientationOptions orientation_options(float alpha_max_deg, int effort) {
   const slim::OrientationEffort level = effort == 0   ? slim::OrientationEffort::Fast

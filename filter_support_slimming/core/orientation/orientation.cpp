@@ -95,13 +95,13 @@ std::vector<Eigen::Vector3d> fibonacci_sphere(int count) {
 OrientationOptions with_effort(OrientationEffort effort, OrientationOptions base) {
   switch (effort) {
     case OrientationEffort::Fast:
-      base.sphere_candidates = 1000, base.refine_starts = 4, base.support_model_candidates = 24, base.support_model_finalists = 4;
+      base.sphere_candidates = 1000, base.refine_starts = 4, base.support_model_candidates = 32, base.support_model_finalists = 4;
       break;
     case OrientationEffort::Normal:
-      base.sphere_candidates = 4000, base.refine_starts = 8, base.support_model_candidates = 48, base.support_model_finalists = 8;
+      base.sphere_candidates = 4000, base.refine_starts = 8, base.support_model_candidates = 64, base.support_model_finalists = 8;
       break;
     case OrientationEffort::Thorough:
-      base.sphere_candidates = 16000, base.refine_starts = 16, base.support_model_candidates = 96, base.support_model_finalists = 16;
+      base.sphere_candidates = 16000, base.refine_starts = 16, base.support_model_candidates = 128, base.support_model_finalists = 16;
       break;
   }
   return base;

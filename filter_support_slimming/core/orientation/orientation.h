@@ -45,9 +45,10 @@
 //      face by face), and the top distinct ones (>= distinct_deg apart) kept;
 //   5. the support model judges the poses (pose_judging.h): the pose as given, the best by score,
 //      and the poses a user would try (the largest convex-hull facets and flat regions resting on
-//      the plate, the principal axes both ways, the largest clusters of face normals face down),
-//      support_model_candidates in all, each at one grid phase; the best support_model_finalists
-//      of them and the pose as given in full. The least support wins, with two exceptions: within
+//      the plate, the principal axes both ways, the largest clusters of face normals face down,
+//      directions spread over the sphere), support_model_candidates in all, each at one grid
+//      phase and a coarser raster; the best support_model_finalists of them and the pose as given
+//      in full. The least support wins, with two exceptions: within
 //      5% + 1 mm³ of the least, a pose that stands on the plate by itself (its centre of mass over
 //      its footprint, pose_stability.h) beats one balanced on a point or an edge; within 1% +
 //      1 mm³ (the model's noise), the pose resting the most area on the plate wins, then the pose
@@ -89,15 +90,15 @@ struct OrientationOptions {
   // The final choice (step 5): the support model (support_model.h, what the slicer builds) judges
   // this many distinct poses at one grid phase (0: the score alone decides), then the best
   // finalists of them, and the pose as given, in full.
-  int support_model_candidates = 48;
+  int support_model_candidates = 64;
   int support_model_finalists = 8;
   double distinct_deg = 5.0;        // candidates closer than this count as one pose, [0, 180]
   int threads = 0;                  // OpenMP threads; 0: the runtime's default. Results do not
                                     // depend on it.
 };
 
-// The options for a search effort: Fast (1000 sphere directions, 4 refined, 24 poses judged by
-// the model, 4 in full), Normal (the defaults: 4000, 8, 48, 8) or Thorough (16000, 16, 96, 16),
+// The options for a search effort: Fast (1000 sphere directions, 4 refined, 32 poses judged by
+// the model, 4 in full), Normal (the defaults: 4000, 8, 64, 8) or Thorough (16000, 16, 128, 16),
 // everything else as in `base`.
 OrientationOptions with_effort(OrientationEffort effort, OrientationOptions base = {});
 

@@ -20,6 +20,9 @@ namespace {
 
 // The poses a user would try, of each kind: hull planes, flat regions, normal clusters.
 constexpr size_t kTriedOfEachKind = 8;
+// Directions spread over the sphere that the model judges whatever their score: a pose whose
+// shadow is large may still need little support, and no proxy-ranked list reaches it.
+constexpr int kSphereForTheModel = 48;
 // Sweep candidates the pool may draw on, best score first.
 constexpr size_t kFromTheSweep = 256;
 // The coarse pass's work: poses times faces, about a second on two cores.
@@ -79,7 +82,7 @@ Eigen::Vector3d resting_near(const Candidates& c, const Eigen::Vector3d& d, cons
 // rest of the sweep by score.
 std::vector<Source> pool_sources(const OrientationGeometry& g, const OrientationOptions& o, const Candidates& c,
                                  const std::vector<size_t>& ranked, const OrientationResult& result) {
-  std::vector<Source> sources(6);
+  std::vector<Source> sources(7);
   for (const OrientationCandidate& t : result.top) sources[0].add(t.direction, t.origin);
   for (size_t k = 0; k < std::min(kTriedOfEachKind, c.hull_rest.size()); ++k) sources[1].add(c.dirs[c.hull_rest[k]], c.origins[c.hull_rest[k]]);
   for (size_t k = 0; k < std::min(kTriedOfEachKind, c.flat_down.size()); ++k) sources[2].add(c.dirs[c.flat_down[k]], c.origins[c.flat_down[k]]);
@@ -92,6 +95,7 @@ std::vector<Source> pool_sources(const OrientationGeometry& g, const Orientation
   std::stable_sort(bins.begin(), bins.end(), [&](size_t a, size_t b) { return g.bins[a].area > g.bins[b].area; });
   for (size_t k = 0; k < std::min(kTriedOfEachKind, bins.size()); ++k) sources[4].add(resting_near(c, -g.bins[bins[k]].axis, o), "face cluster down");
   for (size_t k = 0; k < std::min(ranked.size(), kFromTheSweep); ++k) sources[5].add(c.dirs[ranked[k]], c.origins[ranked[k]]);
+  for (const Eigen::Vector3d& d : fibonacci_sphere(kSphereForTheModel)) sources[6].add(d, "sphere");
   return sources;
 }
 
@@ -129,6 +133,7 @@ std::optional<double> estimate(SupportModel& model, const Surface& surface, cons
   m.print.direction = d;
   m.print.alpha_max_deg = o.alpha_max_deg;
   m.grid_phases = grid_phases;
+  if (grid_phases == 1) m.pixels_per_cell = 2;
   try {
     return model.estimate(surface.V, m).volume_mm3;
   } catch (const std::invalid_argument&) {

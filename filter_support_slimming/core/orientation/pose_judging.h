@@ -12,10 +12,10 @@
 //            best (result.top), the largest convex-hull facets and flat regions resting on the
 //            plate, the principal axes of the surface both ways, the largest clusters of face
 //            normals face down (an axis or a cluster within distinct_deg of a resting pose is
-//            moved onto it), the next best by score; pairwise >= distinct_deg apart (the
+//            moved onto it), the next best by score, 48 directions spread over the sphere; pairwise >= distinct_deg apart (the
 //            earlier wins), support_model_candidates of them, fewer on a large mesh;
-//          - the coarse pass: each estimated by the model at one grid phase (a quarter of the
-//            work of the full estimate, the same columns);
+//          - the coarse pass: each estimated by the model at one grid phase and half the raster
+//            resolution (a small share of the full estimate's work), on the threads at once;
 //          - the fine pass: the best support_model_finalists by the coarse estimate, and the pose
 //            as given, estimated in full (support_estimate), with their rest on the plate
 //            (pose_stability.h: footprint, stable);
