@@ -169,14 +169,16 @@ class PyMeshLabPluginTest(unittest.TestCase):
         self.assertEqual(self.ms.mesh_number(), 2)
         self.assert_input_untouched()
         W = self.ms.current_mesh().vertex_matrix()
-        _, risky_before, area_before = overhang(self.V, self.F, alpha)
-        _, risky_after, area_after = overhang(W, self.F, alpha)
+        # One plate tolerance in every pose: 0.1% of the bbox diagonal of the part as given.
+        tolerance = 1e-3 * np.linalg.norm(self.V.max(axis=0) - self.V.min(axis=0))
+        _, risky_before, area_before = overhang(self.V, self.F, alpha, plate_tolerance=tolerance)
+        _, risky_after, area_after = overhang(W, self.F, alpha, plate_tolerance=tolerance)
         self.assertAlmostEqual(out["risky_area_before"], area_before[risky_before].sum(), places=6)
         self.assertAlmostEqual(out["risky_area_after"], area_after[risky_after].sum(), delta=1e-6)
-        # The pose is the support model's choice among the best by score: never more support by
-        # its estimate than the pose as given (the proxies may rise).
+        # The pose is the support model's choice: never more support by its estimate than the pose
+        # as given, beyond what a pose that stands by itself may cost (the proxies may rise).
         self.assertGreater(out["support_estimate_before_mm3"], 0.0)
-        self.assertLessEqual(out["support_estimate_after_mm3"], out["support_estimate_before_mm3"] * 1.01 + 1.0)
+        self.assertLessEqual(out["support_estimate_after_mm3"], out["support_estimate_before_mm3"] * 1.05 + 1.0)
         self.assertAlmostEqual(W[:, 2].min(), 0.0, places=9)  # resting on z = 0
         # A rigid turn: every edge keeps its length.
         for a, b in ((0, 1), (1, 2), (2, 0)):
