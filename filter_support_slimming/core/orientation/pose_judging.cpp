@@ -57,13 +57,6 @@ class Pool {
   size_t cap_;
 };
 
-// The directions of one source of poses, with their origins, best first.
-struct Source {
-  std::vector<Eigen::Vector3d> dirs;
-  std::vector<std::string> origins;
-  void add(const Eigen::Vector3d& d, const std::string& origin) { dirs.push_back(d), origins.push_back(origin); }
-};
-
 // The nearest pose resting on a hull facet or a flat region within distinct_deg of d, or d: an
 // axis or a cluster a few degrees off a face the part can lie on means that face.
 Eigen::Vector3d resting_near(const Candidates& c, const Eigen::Vector3d& d, const OrientationOptions& o) {
@@ -80,22 +73,22 @@ Eigen::Vector3d resting_near(const Candidates& c, const Eigen::Vector3d& d, cons
 // The sources of the pool: the score's best, the hull planes and flat regions resting, the
 // principal axes, the normal clusters face down (each moved onto a resting pose near it), the
 // rest of the sweep by score.
-std::vector<Source> pool_sources(const OrientationGeometry& g, const OrientationOptions& o, const Candidates& c,
+std::vector<Candidates> pool_sources(const OrientationGeometry& g, const OrientationOptions& o, const Candidates& c,
                                  const std::vector<size_t>& ranked, const OrientationResult& result) {
-  std::vector<Source> sources(7);
-  for (const OrientationCandidate& t : result.top) sources[0].add(t.direction, t.origin);
-  for (size_t k = 0; k < std::min(kTriedOfEachKind, c.hull_rest.size()); ++k) sources[1].add(c.dirs[c.hull_rest[k]], c.origins[c.hull_rest[k]]);
-  for (size_t k = 0; k < std::min(kTriedOfEachKind, c.flat_down.size()); ++k) sources[2].add(c.dirs[c.flat_down[k]], c.origins[c.flat_down[k]]);
+  std::vector<Candidates> sources(7);  // the tie ranks are not read here
+  for (const OrientationCandidate& t : result.top) sources[0].add(t.direction, t.origin, kOther);
+  for (size_t k = 0; k < std::min(kTriedOfEachKind, c.hull_rest.size()); ++k) sources[1].add(c.dirs[c.hull_rest[k]], c.origins[c.hull_rest[k]], kOther);
+  for (size_t k = 0; k < std::min(kTriedOfEachKind, c.flat_down.size()); ++k) sources[2].add(c.dirs[c.flat_down[k]], c.origins[c.flat_down[k]], kOther);
   for (const Eigen::Vector3d& axis : principal_axes(g)) {
-    sources[3].add(resting_near(c, axis, o), "principal axis");
-    sources[3].add(resting_near(c, -axis, o), "principal axis");
+    sources[3].add(resting_near(c, axis, o), "principal axis", kOther);
+    sources[3].add(resting_near(c, -axis, o), "principal axis", kOther);
   }
   std::vector<size_t> bins(g.bins.size());
   std::iota(bins.begin(), bins.end(), size_t{0});
   std::stable_sort(bins.begin(), bins.end(), [&](size_t a, size_t b) { return g.bins[a].area > g.bins[b].area; });
-  for (size_t k = 0; k < std::min(kTriedOfEachKind, bins.size()); ++k) sources[4].add(resting_near(c, -g.bins[bins[k]].axis, o), "face cluster down");
-  for (size_t k = 0; k < std::min(ranked.size(), kFromTheSweep); ++k) sources[5].add(c.dirs[ranked[k]], c.origins[ranked[k]]);
-  for (const Eigen::Vector3d& d : fibonacci_sphere(kSphereForTheModel)) sources[6].add(d, "sphere");
+  for (size_t k = 0; k < std::min(kTriedOfEachKind, bins.size()); ++k) sources[4].add(resting_near(c, -g.bins[bins[k]].axis, o), "face cluster down", kOther);
+  for (size_t k = 0; k < std::min(ranked.size(), kFromTheSweep); ++k) sources[5].add(c.dirs[ranked[k]], c.origins[ranked[k]], kOther);
+  for (const Eigen::Vector3d& d : fibonacci_sphere(kSphereForTheModel)) sources[6].add(d, "sphere", kOther);
   return sources;
 }
 
@@ -113,10 +106,10 @@ std::vector<OrientationCandidate> model_pool(const OrientationGeometry& g, const
                                              const std::vector<size_t>& ranked, const OrientationResult& result) {
   Pool pool(g, o, pool_size(g, o));
   pool.add(result.as_given);
-  const std::vector<Source> sources = pool_sources(g, o, c, ranked, result);
+  const std::vector<Candidates> sources = pool_sources(g, o, c, ranked, result);
   for (size_t k = 0; !pool.full(); ++k) {
     bool more = false;
-    for (const Source& s : sources) {
+    for (const Candidates& s : sources) {
       if (k >= s.dirs.size()) continue;
       more = true;
       pool.add(s.dirs[k], s.origins[k]);
